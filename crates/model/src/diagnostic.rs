@@ -446,7 +446,14 @@ impl Diagnostic {
     /// An error of `kind` at `span`, without help or labels.
     #[must_use]
     pub fn new(kind: DiagnosticKind, span: Span) -> Diagnostic {
-        Diagnostic { kind, severity: Severity::Error, span, label: None, help: None, labels: Vec::new() }
+        Diagnostic {
+            kind,
+            severity: Severity::Error,
+            span,
+            label: None,
+            help: None,
+            labels: Vec::new(),
+        }
     }
 
     /// Add how to mend the problem.
@@ -466,7 +473,10 @@ impl Diagnostic {
     /// Point at a related place.
     #[must_use]
     pub fn with_related(mut self, span: Span, message: impl Into<String>) -> Diagnostic {
-        self.labels.push(Label { span, message: message.into() });
+        self.labels.push(Label {
+            span,
+            message: message.into(),
+        });
         self
     }
 
@@ -508,7 +518,11 @@ pub struct Diagnostics(pub Vec<Diagnostic>);
 impl fmt::Display for Diagnostics {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let errors = self.0.iter().filter(|d| d.is_error()).count();
-        write!(f, "{errors} error{} in the model", if errors == 1 { "" } else { "s" })?;
+        write!(
+            f,
+            "{errors} error{} in the model",
+            if errors == 1 { "" } else { "s" }
+        )?;
         if let Some(first) = self.0.first() {
             write!(f, "; first: {first}")?;
         }
@@ -519,7 +533,10 @@ impl fmt::Display for Diagnostics {
 impl std::error::Error for Diagnostics {}
 
 /// The closest of `candidates` to `name` by edit distance, if close enough to be a likely typo.
-pub(crate) fn suggest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub(crate) fn suggest<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     // Allow one edit for short names, more for long ones; never suggest a name that is as far
     // away as it is long (that is not a typo).
     let limit = match name.chars().count() {

@@ -23,10 +23,18 @@ impl Model {
 
 fn precedence(expr: &Expr) -> u8 {
     match &expr.kind {
-        ExprKind::Binary { op: BinaryOp::Add | BinaryOp::Sub, .. } => 1,
-        ExprKind::Binary { op: BinaryOp::Mul | BinaryOp::Div, .. } => 2,
+        ExprKind::Binary {
+            op: BinaryOp::Add | BinaryOp::Sub,
+            ..
+        } => 1,
+        ExprKind::Binary {
+            op: BinaryOp::Mul | BinaryOp::Div,
+            ..
+        } => 2,
         ExprKind::Neg(_) => 3,
-        ExprKind::Binary { op: BinaryOp::Pow, .. } => 4,
+        ExprKind::Binary {
+            op: BinaryOp::Pow, ..
+        } => 4,
         _ => 5,
     }
 }
@@ -43,19 +51,39 @@ impl fmt::Display for DisplayExpr<'_> {
             }
         };
         // Ids come from the checker for this very model; `get` keeps printing total anyway.
-        let name = |list: Option<&crate::model::Name>| list.map_or("?", |n| n.name.as_str()).to_string();
+        let name =
+            |list: Option<&crate::model::Name>| list.map_or("?", |n| n.name.as_str()).to_string();
         match &self.expr.kind {
             ExprKind::Number { text, .. } => f.write_str(text),
             ExprKind::Time => f.write_str("t"),
             ExprKind::Pi => f.write_str("pi"),
-            ExprKind::Coordinate(id) => f.write_str(&name(model.coordinates.get(id.index()).map(|c| &c.name))),
-            ExprKind::Rate(id) => write!(f, "{}'", name(model.coordinates.get(id.index()).map(|c| &c.name))),
-            ExprKind::Parameter(id) => f.write_str(&name(model.parameters.get(id.index()).map(|c| &c.name))),
-            ExprKind::Input(id) => f.write_str(&name(model.inputs.get(id.index()).map(|c| &c.name))),
-            ExprKind::Constant(id) => f.write_str(&name(model.constants.get(id.index()).map(|c| &c.name))),
-            ExprKind::Point(id) => f.write_str(&name(model.points.get(id.index()).map(|c| &c.name))),
+            ExprKind::Coordinate(id) => {
+                f.write_str(&name(model.coordinates.get(id.index()).map(|c| &c.name)))
+            }
+            ExprKind::Rate(id) => write!(
+                f,
+                "{}'",
+                name(model.coordinates.get(id.index()).map(|c| &c.name))
+            ),
+            ExprKind::Parameter(id) => {
+                f.write_str(&name(model.parameters.get(id.index()).map(|c| &c.name)))
+            }
+            ExprKind::Input(id) => {
+                f.write_str(&name(model.inputs.get(id.index()).map(|c| &c.name)))
+            }
+            ExprKind::Constant(id) => {
+                f.write_str(&name(model.constants.get(id.index()).map(|c| &c.name)))
+            }
+            ExprKind::Point(id) => {
+                f.write_str(&name(model.points.get(id.index()).map(|c| &c.name)))
+            }
             ExprKind::UnitVector { frame, axis } => {
-                write!(f, "{}.{}", name(model.frames.get(frame.index()).map(|c| &c.name)), axis.name())
+                write!(
+                    f,
+                    "{}.{}",
+                    name(model.frames.get(frame.index()).map(|c| &c.name)),
+                    axis.name()
+                )
             }
             ExprKind::Neg(operand) => {
                 f.write_str("-")?;

@@ -163,7 +163,10 @@ pub fn lex(source: &str) -> (Vec<Spanned>, Vec<Diagnostic>) {
                     }
                 }
                 let text = source.get(span.range()).unwrap_or("").to_string();
-                diagnostics.push(Diagnostic::new(DiagnosticKind::InvalidCharacter { text }, span));
+                diagnostics.push(Diagnostic::new(
+                    DiagnosticKind::InvalidCharacter { text },
+                    span,
+                ));
             }
         }
     }
@@ -180,25 +183,20 @@ fn join_lines(source: &str, raw: &[Spanned]) -> Vec<Spanned> {
         match current.token {
             Token::LParen => depth += 1,
             Token::RParen => depth = depth.saturating_sub(1),
-            Token::Backslash => {
-                if raw.get(index).map(|next| next.token) == Some(Token::Newline) {
-                    // `\` + line break: skip both.
-                    index += 1;
-                    continue;
-                }
+            // `\` + line break: skip both.
+            Token::Backslash if raw.get(index).map(|next| next.token) == Some(Token::Newline) => {
+                index += 1;
+                continue;
             }
-            Token::Newline => {
-                if depth > 0 {
-                    let next = raw.get(index);
-                    let starts_statement = next.is_some_and(|next| {
-                        next.token == Token::Name
-                            && STATEMENT_KEYWORDS.contains(&source.get(next.span.range()).unwrap_or(""))
-                    });
-                    if starts_statement {
-                        depth = 0;
-                    } else {
-                        continue;
-                    }
+            Token::Newline if depth > 0 => {
+                let starts_statement = raw.get(index).is_some_and(|next| {
+                    next.token == Token::Name
+                        && STATEMENT_KEYWORDS.contains(&source.get(next.span.range()).unwrap_or(""))
+                });
+                if starts_statement {
+                    depth = 0;
+                } else {
+                    continue;
                 }
             }
             _ => {}
@@ -206,8 +204,14 @@ fn join_lines(source: &str, raw: &[Spanned]) -> Vec<Spanned> {
         tokens.push(current);
     }
     let end = source.len();
-    tokens.push(Spanned { token: Token::Newline, span: Span::new(end, end) });
-    tokens.push(Spanned { token: Token::Eof, span: Span::new(end, end) });
+    tokens.push(Spanned {
+        token: Token::Newline,
+        span: Span::new(end, end),
+    });
+    tokens.push(Spanned {
+        token: Token::Eof,
+        span: Span::new(end, end),
+    });
     tokens
 }
 
@@ -235,9 +239,15 @@ mod tests {
     fn continuation_lines_are_joined() {
         use Token::*;
         assert_eq!(kinds("a \\\n b"), vec![Name, Name, Newline, Eof]);
-        assert_eq!(kinds("f(a,\n b)\nc"), vec![Name, LParen, Name, Comma, Name, RParen, Newline, Name, Newline, Eof]);
+        assert_eq!(
+            kinds("f(a,\n b)\nc"),
+            vec![Name, LParen, Name, Comma, Name, RParen, Newline, Name, Newline, Eof]
+        );
         // An unclosed parenthesis does not swallow the next statement.
-        assert_eq!(kinds("f(a\npoint"), vec![Name, LParen, Name, Newline, Name, Newline, Eof]);
+        assert_eq!(
+            kinds("f(a\npoint"),
+            vec![Name, LParen, Name, Newline, Name, Newline, Eof]
+        );
     }
 
     #[test]

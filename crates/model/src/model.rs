@@ -216,8 +216,8 @@ impl Function {
 
     /// All function names, including aliases.
     pub const NAMES: &'static [&'static str] = &[
-        "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "ln", "log", "sqrt", "abs", "sign", "dot",
-        "cross", "norm",
+        "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "ln", "log", "sqrt", "abs",
+        "sign", "dot", "cross", "norm",
     ];
 
     /// The canonical name.
@@ -505,9 +505,11 @@ impl Constraint {
 /// Whether `expr` involves no coordinate, rate, input or time.
 pub(crate) fn is_constant(expr: &Expr) -> bool {
     match &expr.kind {
-        ExprKind::Time | ExprKind::Coordinate(_) | ExprKind::Rate(_) | ExprKind::Input(_) | ExprKind::Point(_) => {
-            false
-        }
+        ExprKind::Time
+        | ExprKind::Coordinate(_)
+        | ExprKind::Rate(_)
+        | ExprKind::Input(_)
+        | ExprKind::Point(_) => false,
         ExprKind::Number { .. }
         | ExprKind::Pi
         | ExprKind::Parameter(_)
@@ -674,7 +676,10 @@ impl Model {
     /// The inertial frame, if any frame is declared.
     #[must_use]
     pub fn inertial_frame(&self) -> Option<FrameId> {
-        self.frames.iter().position(|f| f.rotation.is_none()).map(|i| FrameId(i as u32))
+        self.frames
+            .iter()
+            .position(|f| f.rotation.is_none())
+            .map(|i| FrameId(i as u32))
     }
 
     /// The coordinate with id `id`.

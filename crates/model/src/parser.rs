@@ -6,6 +6,11 @@
 //! nesting is capped at [`MAX_DEPTH`] (both the parser's recursion and the depth of the tree it
 //! builds), so no input can overflow the stack here or in later passes over the tree.
 
+// A parse error is made once per broken statement, on the error path only, and then moved
+// into the diagnostics list: its size (a whole `Diagnostic`) costs nothing measurable, and
+// boxing it would only add noise to every `?`.
+#![allow(clippy::result_large_err)]
+
 use crate::ast::*;
 use crate::diagnostic::{suggest, Diagnostic, DiagnosticKind};
 use crate::lexer::{lex, Spanned, Token, STATEMENT_KEYWORDS};
@@ -19,7 +24,13 @@ pub const MAX_DEPTH: usize = 64;
 #[must_use]
 pub fn parse(source: &str) -> (Ast, Vec<Diagnostic>) {
     let (tokens, diagnostics) = lex(source);
-    let mut parser = Parser { source, tokens, position: 0, depth: 0, diagnostics };
+    let mut parser = Parser {
+        source,
+        tokens,
+        position: 0,
+        depth: 0,
+        diagnostics,
+    };
     let statements = parser.file();
     (Ast { statements }, parser.diagnostics)
 }
@@ -46,8 +57,15 @@ impl<'s> Parser<'s> {
     }
 
     fn nth(&self, n: usize) -> Spanned {
-        let end = Spanned { token: Token::Eof, span: Span::new(self.source.len(), self.source.len()) };
-        self.tokens.get(self.position + n).or(self.tokens.last()).copied().unwrap_or(end)
+        let end = Spanned {
+            token: Token::Eof,
+            span: Span::new(self.source.len(), self.source.len()),
+        };
+        self.tokens
+            .get(self.position + n)
+            .or(self.tokens.last())
+            .copied()
+            .unwrap_or(end)
     }
 
     fn bump(&mut self) -> Spanned {
@@ -97,7 +115,10 @@ impl<'s> Parser<'s> {
     }
 
     fn unexpected(&self, expected: impl Into<String>) -> Diagnostic {
-        let kind = DiagnosticKind::UnexpectedToken { expected: expected.into(), found: self.found() };
+        let kind = DiagnosticKind::UnexpectedToken {
+            expected: expected.into(),
+            found: self.found(),
+        };
         Diagnostic::new(kind, self.peek().span)
     }
 
@@ -106,16 +127,23 @@ impl<'s> Parser<'s> {
     }
 
     fn expect_keyword(&mut self, keyword: &str) -> ParseResult<Span> {
-        self.eat_keyword(keyword).ok_or_else(|| self.unexpected(format!("`{keyword}`")))
+        self.eat_keyword(keyword)
+            .ok_or_else(|| self.unexpected(format!("`{keyword}`")))
     }
 
     fn ident(&mut self, what: &str) -> ParseResult<Ident> {
         let token = self.expect(Token::Name, what)?;
-        Ok(Ident { name: self.text(token.span).to_string(), span: token.span })
+        Ok(Ident {
+            name: self.text(token.span).to_string(),
+            span: token.span,
+        })
     }
 
     fn span_from(&self, start: Span) -> Span {
-        let end = self.tokens.get(self.position.wrapping_sub(1)).map_or(start, |t| t.span);
+        let end = self
+            .tokens
+            .get(self.position.wrapping_sub(1))
+            .map_or(start, |t| t.span);
         start.to(end)
     }
 
@@ -139,7 +167,10 @@ impl<'s> Parser<'s> {
                 }
             });
             match result {
-                Ok(kind) => statements.push(Statement { kind, span: self.span_from(start) }),
+                Ok(kind) => statements.push(Statement {
+                    kind,
+                    span: self.span_from(start),
+                }),
                 Err(diagnostic) => {
                     self.diagnostics.push(diagnostic);
                     while !self.at(Token::Newline) && !self.at(Token::Eof) {
@@ -160,12 +191,16 @@ impl<'s> Parser<'s> {
         let keyword = match word {
             "coordinate" | "coordinates" | "parameter" | "parameters" | "input" | "inputs"
             | "constant" | "constants" | "driven" | "frame" | "point" | "particle" | "body"
-            | "gravity" | "spring" | "damper" | "dissipation" | "potential" | "force" | "couple"
-            | "generalized" | "constraint" | "reaction" | "reactions" | "initial" | "simulate"
-            | "output" | "outputs" => word,
+            | "gravity" | "spring" | "damper" | "dissipation" | "potential" | "force"
+            | "couple" | "generalized" | "constraint" | "reaction" | "reactions" | "initial"
+            | "simulate" | "output" | "outputs" => word,
             _ => {
-                let mut diagnostic =
-                    Diagnostic::new(DiagnosticKind::UnknownStatement { word: word.to_string() }, first.span);
+                let mut diagnostic = Diagnostic::new(
+                    DiagnosticKind::UnknownStatement {
+                        word: word.to_string(),
+                    },
+                    first.span,
+                );
                 diagnostic = match suggest(word, STATEMENT_KEYWORDS.iter().copied()) {
                     Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
                     None => diagnostic.with_help(
@@ -178,7 +213,9 @@ impl<'s> Parser<'s> {
         };
         self.bump();
         Ok(match keyword {
-            "coordinate" | "coordinates" => StatementKind::Coordinates(self.ident_list("a coordinate name")?),
+            "coordinate" | "coordinates" => {
+                StatementKind::Coordinates(self.ident_list("a coordinate name")?)
+            }
             "parameter" | "parameters" => StatementKind::Parameters(self.bindings(false)?),
             "input" | "inputs" => StatementKind::Inputs(self.bindings(false)?),
             "constant" | "constants" => StatementKind::Constants(self.bindings(true)?),
@@ -187,49 +224,78 @@ impl<'s> Parser<'s> {
             "point" => {
                 let name = self.ident("a point name")?;
                 self.expect(Token::Equals, "`=` and the point's position")?;
-                StatementKind::Point { name, position: self.expr()? }
+                StatementKind::Point {
+                    name,
+                    position: self.expr()?,
+                }
             }
             "particle" => {
                 let point = self.ident("the name of the point where the particle is")?;
-                self.expect_keyword("mass").map_err(|d| d.with_help("Write `particle A mass m`."))?;
-                StatementKind::Particle { point, mass: self.expr()? }
+                self.expect_keyword("mass")
+                    .map_err(|d| d.with_help("Write `particle A mass m`."))?;
+                StatementKind::Particle {
+                    point,
+                    mass: self.expr()?,
+                }
             }
             "body" => self.body()?,
             "gravity" => StatementKind::Gravity(self.expr()?),
             "spring" => {
                 let stiffness = self.expr()?;
                 let connection = self.connection("spring")?;
-                let rest = if self.eat_keyword("length").is_some() || self.eat_keyword("rest").is_some() {
-                    Some(self.expr()?)
-                } else {
-                    None
-                };
-                StatementKind::Spring { stiffness, connection, rest }
+                let rest =
+                    if self.eat_keyword("length").is_some() || self.eat_keyword("rest").is_some() {
+                        Some(self.expr()?)
+                    } else {
+                        None
+                    };
+                StatementKind::Spring {
+                    stiffness,
+                    connection,
+                    rest,
+                }
             }
             "damper" => {
                 let coefficient = self.expr()?;
-                StatementKind::Damper { coefficient, connection: self.connection("damper")? }
+                StatementKind::Damper {
+                    coefficient,
+                    connection: self.connection("damper")?,
+                }
             }
             "dissipation" => StatementKind::Dissipation(self.expr()?),
             "potential" => StatementKind::Potential(self.expr()?),
             "force" => {
                 let force = self.expr()?;
-                self.expect_keyword("at").map_err(|d| d.with_help("Write `force F*N.x at A`."))?;
-                StatementKind::Force { force, point: self.expr()? }
+                self.expect_keyword("at")
+                    .map_err(|d| d.with_help("Write `force F*N.x at A`."))?;
+                StatementKind::Force {
+                    force,
+                    point: self.expr()?,
+                }
             }
             "couple" => {
                 let moment = self.expr()?;
-                self.expect_keyword("on").map_err(|d| d.with_help("Write `couple C*N.z on BODY`."))?;
-                StatementKind::Couple { moment, body: self.ident("a body name")? }
+                self.expect_keyword("on")
+                    .map_err(|d| d.with_help("Write `couple C*N.z on BODY`."))?;
+                StatementKind::Couple {
+                    moment,
+                    body: self.ident("a body name")?,
+                }
             }
             "generalized" => {
                 self.expect_keyword("force")?;
                 let force = self.expr()?;
-                self.expect_keyword("on").map_err(|d| d.with_help("Write `generalized force Q on theta`."))?;
-                StatementKind::GeneralizedForce { force, coordinate: self.ident("a coordinate name")? }
+                self.expect_keyword("on")
+                    .map_err(|d| d.with_help("Write `generalized force Q on theta`."))?;
+                StatementKind::GeneralizedForce {
+                    force,
+                    coordinate: self.ident("a coordinate name")?,
+                }
             }
             "constraint" => self.constraint()?,
-            "reaction" | "reactions" => StatementKind::Reactions(self.ident_list("a constraint name")?),
+            "reaction" | "reactions" => {
+                StatementKind::Reactions(self.ident_list("a constraint name")?)
+            }
             "initial" => self.initial()?,
             "simulate" => self.simulate()?,
             _ => self.output()?,
@@ -265,7 +331,10 @@ impl<'s> Parser<'s> {
     fn frame(&mut self) -> ParseResult<StatementKind> {
         let name = self.ident("a frame name")?;
         if self.eat(Token::Equals).is_none() {
-            return Ok(StatementKind::Frame { name, rotation: None });
+            return Ok(StatementKind::Frame {
+                name,
+                rotation: None,
+            });
         }
         let parent = self.ident("the frame this one is rotated from")?;
         self.expect_keyword("rotated")
@@ -273,15 +342,19 @@ impl<'s> Parser<'s> {
         let mut rotations = Vec::new();
         loop {
             let angle = self.expr()?;
-            self.expect_keyword("about")
-                .map_err(|d| d.with_help("Name the axis of the rotation: `… rotated theta about z`."))?;
+            self.expect_keyword("about").map_err(|d| {
+                d.with_help("Name the axis of the rotation: `… rotated theta about z`.")
+            })?;
             let axis = self.ident("an axis: `x`, `y` or `z`")?;
             rotations.push(Rotation { angle, axis });
             if self.eat_keyword("then").is_none() {
                 break;
             }
         }
-        Ok(StatementKind::Frame { name, rotation: Some((parent, rotations)) })
+        Ok(StatementKind::Frame {
+            name,
+            rotation: Some((parent, rotations)),
+        })
     }
 
     fn body(&mut self) -> ParseResult<StatementKind> {
@@ -292,30 +365,50 @@ impl<'s> Parser<'s> {
             let word = self.text(keyword.span);
             let duplicate = match word {
                 "mass" => clauses.mass.replace(self.expr()?).is_some(),
-                "at" => clauses.centre.replace(self.ident("the centre-of-mass point")?).is_some(),
-                "frame" => clauses.frame.replace(self.ident("the body frame")?).is_some(),
+                "at" => clauses
+                    .centre
+                    .replace(self.ident("the centre-of-mass point")?)
+                    .is_some(),
+                "frame" => clauses
+                    .frame
+                    .replace(self.ident("the body frame")?)
+                    .is_some(),
                 "inertia" => {
                     let spec = self.inertia()?;
-                    let about =
-                        if self.eat_keyword("about").is_some() { Some(self.ident("a point")?) } else { None };
-                    let clause = InertiaClause { spec, about, span: self.span_from(keyword.span) };
+                    let about = if self.eat_keyword("about").is_some() {
+                        Some(self.ident("a point")?)
+                    } else {
+                        None
+                    };
+                    let clause = InertiaClause {
+                        spec,
+                        about,
+                        span: self.span_from(keyword.span),
+                    };
                     clauses.inertia.replace(clause).is_some()
                 }
                 _ => {
-                    let kind = DiagnosticKind::UnknownOption { option: word.to_string(), statement: "body" };
+                    let kind = DiagnosticKind::UnknownOption {
+                        option: word.to_string(),
+                        statement: "body",
+                    };
                     let mut diagnostic = Diagnostic::new(kind, keyword.span);
                     if let Some(best) = suggest(word, ["mass", "at", "frame", "inertia"]) {
                         diagnostic = diagnostic.with_help(format!("Did you mean `{best}`?"));
                     } else {
-                        diagnostic = diagnostic
-                            .with_help("A body takes `mass m`, `at C`, `frame B` and `inertia I1, I2, I3`.");
+                        diagnostic = diagnostic.with_help(
+                            "A body takes `mass m`, `at C`, `frame B` and `inertia I1, I2, I3`.",
+                        );
                     }
                     return Err(diagnostic);
                 }
             };
             if duplicate {
-                let kind = DiagnosticKind::DuplicateClause { clause: word.to_string() };
-                return Err(Diagnostic::new(kind, keyword.span).with_help("Give each clause of a body once."));
+                let kind = DiagnosticKind::DuplicateClause {
+                    clause: word.to_string(),
+                };
+                return Err(Diagnostic::new(kind, keyword.span)
+                    .with_help("Give each clause of a body once."));
             }
         }
         Ok(StatementKind::Body { name, clauses })
@@ -355,7 +448,10 @@ impl<'s> Parser<'s> {
         if self.eat_keyword("from").is_some() {
             let from = self.expr()?;
             self.expect_keyword("to")?;
-            Ok(Connection::Points { from, to: self.expr()? })
+            Ok(Connection::Points {
+                from,
+                to: self.expr()?,
+            })
         } else if self.eat_keyword("on").is_some() {
             Ok(Connection::Scalar(self.expr()?))
         } else {
@@ -376,23 +472,38 @@ impl<'s> Parser<'s> {
         let word_follows = self.nth(1).token == Token::Name;
         let spec = if word_follows && self.eat_keyword("rolling").is_some() {
             let body = self.ident("a body name")?;
-            self.expect_keyword("at").map_err(|d| d.with_help("Write `rolling BODY at CONTACT`."))?;
-            ConstraintSpec::Rolling { body, contact: self.ident("the contact point")? }
+            self.expect_keyword("at")
+                .map_err(|d| d.with_help("Write `rolling BODY at CONTACT`."))?;
+            ConstraintSpec::Rolling {
+                body,
+                contact: self.ident("the contact point")?,
+            }
         } else if word_follows && self.eat_keyword("gear").is_some() {
             let driver = self.ident("a coordinate")?;
-            self.expect_keyword("to").map_err(|d| d.with_help("Write `gear phi1 to phi2 ratio r`."))?;
+            self.expect_keyword("to")
+                .map_err(|d| d.with_help("Write `gear phi1 to phi2 ratio r`."))?;
             let driven = self.ident("a coordinate")?;
-            self.expect_keyword("ratio").map_err(|d| d.with_help("Write `gear phi1 to phi2 ratio r`."))?;
-            ConstraintSpec::Gear { driver, driven, ratio: self.expr()? }
+            self.expect_keyword("ratio")
+                .map_err(|d| d.with_help("Write `gear phi1 to phi2 ratio r`."))?;
+            ConstraintSpec::Gear {
+                driver,
+                driven,
+                ratio: self.expr()?,
+            }
         } else {
             let lhs = self.expr()?;
             if self.eat(Token::Equals).is_none() {
-                return Err(Diagnostic::new(DiagnosticKind::NotAnEquation, lhs.span).with_help(format!(
-                    "Write the constraint as an equation, e.g. `{} = 0`.",
-                    self.text(lhs.span)
-                )));
+                return Err(
+                    Diagnostic::new(DiagnosticKind::NotAnEquation, lhs.span).with_help(format!(
+                        "Write the constraint as an equation, e.g. `{} = 0`.",
+                        self.text(lhs.span)
+                    )),
+                );
             }
-            ConstraintSpec::Equation { lhs, rhs: self.expr()? }
+            ConstraintSpec::Equation {
+                lhs,
+                rhs: self.expr()?,
+            }
         };
         Ok(StatementKind::Constraint { name, spec })
     }
@@ -403,7 +514,11 @@ impl<'s> Parser<'s> {
             let name = self.ident("a coordinate")?;
             let rate = self.eat(Token::Prime).is_some();
             self.expect(Token::Equals, "`=` and an initial value")?;
-            values.push(InitialValue { name, rate, value: self.expr()? });
+            values.push(InitialValue {
+                name,
+                rate,
+                value: self.expr()?,
+            });
             if self.eat(Token::Comma).is_none() {
                 return Ok(StatementKind::Initial(values));
             }
@@ -416,17 +531,25 @@ impl<'s> Parser<'s> {
             let key = self.ident("a setting")?;
             if !["from", "to", "step", "rtol", "atol", "method"].contains(&key.name.as_str()) {
                 let mut diagnostic = Diagnostic::new(
-                    DiagnosticKind::UnknownOption { option: key.name.clone(), statement: "simulate" },
+                    DiagnosticKind::UnknownOption {
+                        option: key.name.clone(),
+                        statement: "simulate",
+                    },
                     key.span,
                 );
-                diagnostic = match suggest(&key.name, ["from", "to", "step", "rtol", "atol", "method"]) {
-                    Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
-                    None => diagnostic
-                        .with_help("`simulate` takes `from`, `to`, `step`, `rtol`, `atol` and `method`."),
-                };
+                diagnostic =
+                    match suggest(&key.name, ["from", "to", "step", "rtol", "atol", "method"]) {
+                        Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
+                        None => diagnostic.with_help(
+                            "`simulate` takes `from`, `to`, `step`, `rtol`, `atol` and `method`.",
+                        ),
+                    };
                 return Err(diagnostic);
             }
-            settings.push(Setting { key, value: self.expr()? });
+            settings.push(Setting {
+                key,
+                value: self.expr()?,
+            });
             self.eat(Token::Comma);
         }
         Ok(StatementKind::Simulate(settings))
@@ -442,7 +565,10 @@ impl<'s> Parser<'s> {
             } else {
                 None
             };
-            items.push(OutputItem { name, value: self.expr()? });
+            items.push(OutputItem {
+                name,
+                value: self.expr()?,
+            });
             if self.eat(Token::Comma).is_none() {
                 return Ok(StatementKind::Output(items));
             }
@@ -498,7 +624,14 @@ impl<'s> Parser<'s> {
             if depth > MAX_DEPTH {
                 return Err(self.too_deep(span));
             }
-            lhs = Expr { kind: ExprKind::Binary { op, lhs: Box::new(lhs), rhs: Box::new(rhs) }, span };
+            lhs = Expr {
+                kind: ExprKind::Binary {
+                    op,
+                    lhs: Box::new(lhs),
+                    rhs: Box::new(rhs),
+                },
+                span,
+            };
         }
         Ok((lhs, depth))
     }
@@ -511,11 +644,22 @@ impl<'s> Parser<'s> {
                 let text = self.text(token.span);
                 match text.parse::<f64>() {
                     Ok(value) if value.is_finite() => {
-                        let number = Number { text: text.to_string(), value };
-                        Ok((Expr { kind: ExprKind::Number(number), span: token.span }, 1))
+                        let number = Number {
+                            text: text.to_string(),
+                            value,
+                        };
+                        Ok((
+                            Expr {
+                                kind: ExprKind::Number(number),
+                                span: token.span,
+                            },
+                            1,
+                        ))
                     }
                     _ => Err(Diagnostic::new(
-                        DiagnosticKind::NumberOutOfRange { text: text.to_string() },
+                        DiagnosticKind::NumberOutOfRange {
+                            text: text.to_string(),
+                        },
                         token.span,
                     )
                     .with_help("Numbers must be finite double-precision values (|x| < 1.8e308).")),
@@ -523,40 +667,79 @@ impl<'s> Parser<'s> {
             }
             Token::Name => {
                 self.bump();
-                let ident = Ident { name: self.text(token.span).to_string(), span: token.span };
+                let ident = Ident {
+                    name: self.text(token.span).to_string(),
+                    span: token.span,
+                };
                 match self.peek().token {
                     Token::LParen => self.call(ident),
                     Token::Dot => {
                         self.bump();
                         let axis = self.ident("an axis: `x`, `y` or `z`")?;
                         let span = ident.span.to(axis.span);
-                        Ok((Expr { kind: ExprKind::UnitVector { frame: ident, axis }, span }, 1))
+                        Ok((
+                            Expr {
+                                kind: ExprKind::UnitVector { frame: ident, axis },
+                                span,
+                            },
+                            1,
+                        ))
                     }
                     Token::Prime => {
                         let prime = self.bump();
                         let span = ident.span.to(prime.span);
-                        Ok((Expr { kind: ExprKind::Rate(ident), span }, 1))
+                        Ok((
+                            Expr {
+                                kind: ExprKind::Rate(ident),
+                                span,
+                            },
+                            1,
+                        ))
                     }
-                    _ => Ok((Expr { kind: ExprKind::Name(ident.clone()), span: ident.span }, 1)),
+                    _ => Ok((
+                        Expr {
+                            kind: ExprKind::Name(ident.clone()),
+                            span: ident.span,
+                        },
+                        1,
+                    )),
                 }
             }
             Token::LParen => {
                 self.bump();
                 let (inner, depth) = self.expr_bp(0)?;
                 let close = self.close_paren(token.span)?;
-                Ok((Expr { kind: inner.kind, span: token.span.to(close) }, depth))
+                Ok((
+                    Expr {
+                        kind: inner.kind,
+                        span: token.span.to(close),
+                    },
+                    depth,
+                ))
             }
             Token::Minus | Token::Plus => {
                 self.bump();
                 let (operand, depth) = self.expr_bp(PREFIX_POWER)?;
                 let span = token.span.to(operand.span);
                 if token.token == Token::Plus {
-                    return Ok((Expr { kind: operand.kind, span }, depth));
+                    return Ok((
+                        Expr {
+                            kind: operand.kind,
+                            span,
+                        },
+                        depth,
+                    ));
                 }
                 if depth + 1 > MAX_DEPTH {
                     return Err(self.too_deep(span));
                 }
-                Ok((Expr { kind: ExprKind::Neg(Box::new(operand)), span }, depth + 1))
+                Ok((
+                    Expr {
+                        kind: ExprKind::Neg(Box::new(operand)),
+                        span,
+                    },
+                    depth + 1,
+                ))
             }
             _ => Err(self.unexpected("an expression")),
         }
@@ -581,7 +764,13 @@ impl<'s> Parser<'s> {
             return Err(self.too_deep(function.span.to(close)));
         }
         let span = function.span.to(close);
-        Ok((Expr { kind: ExprKind::Call { function, args }, span }, depth))
+        Ok((
+            Expr {
+                kind: ExprKind::Call { function, args },
+                span,
+            },
+            depth,
+        ))
     }
 
     fn close_paren(&mut self, open: Span) -> ParseResult<Span> {
@@ -593,7 +782,9 @@ impl<'s> Parser<'s> {
                 .with_label("this parenthesis is never closed")
                 .with_help("Add the missing `)`."))
         } else {
-            Err(self.unexpected("`)`").with_related(open, "to close this parenthesis"))
+            Err(self
+                .unexpected("`)`")
+                .with_related(open, "to close this parenthesis"))
         }
     }
 }
@@ -616,9 +807,15 @@ mod tests {
             ExprKind::Rate(i) => format!("{}'", i.name),
             ExprKind::UnitVector { frame, axis } => format!("{}.{}", frame.name, axis.name),
             ExprKind::Neg(e) => format!("(-{})", show(e)),
-            ExprKind::Binary { op, lhs, rhs } => format!("({} {} {})", show(lhs), op.symbol(), show(rhs)),
+            ExprKind::Binary { op, lhs, rhs } => {
+                format!("({} {} {})", show(lhs), op.symbol(), show(rhs))
+            }
             ExprKind::Call { function, args } => {
-                format!("{}({})", function.name, args.iter().map(show).collect::<Vec<_>>().join(", "))
+                format!(
+                    "{}({})",
+                    function.name,
+                    args.iter().map(show).collect::<Vec<_>>().join(", ")
+                )
             }
         }
     }
@@ -641,7 +838,10 @@ mod tests {
         assert_eq!(expr("-x^2"), "(-(x ^ 2))");
         assert_eq!(expr("2^-x"), "(2 ^ (-x))");
         assert_eq!(expr("(a + b)*c"), "((a + b) * c)");
-        assert_eq!(expr("A + l*sin(theta)*N.x"), "(A + ((l * sin(theta)) * N.x))");
+        assert_eq!(
+            expr("A + l*sin(theta)*N.x"),
+            "(A + ((l * sin(theta)) * N.x))"
+        );
         assert_eq!(expr("atan2(y, x) + x'"), "(atan2(y, x) + x')");
         assert_eq!(expr("+1.5e3"), "1.5e3");
     }
@@ -650,9 +850,13 @@ mod tests {
     fn spans_cover_the_text() {
         let source = "gravity  (a + b) * c";
         let ast = parse_ok(source);
-        let StatementKind::Gravity(e) = &ast.statements[0].kind else { panic!() };
+        let StatementKind::Gravity(e) = &ast.statements[0].kind else {
+            panic!()
+        };
         assert_eq!(&source[e.span.range()], "(a + b) * c");
-        let ExprKind::Binary { lhs, .. } = &e.kind else { panic!() };
+        let ExprKind::Binary { lhs, .. } = &e.kind else {
+            panic!()
+        };
         assert_eq!(&source[lhs.span.range()], "(a + b)");
         assert_eq!(&source[ast.statements[0].span.range()], source);
     }
@@ -669,19 +873,28 @@ mod tests {
              simulate from 0 to 10 step 0.01\noutput x, yB = dot(B, N.y)\nreactions roll\n",
         );
         assert_eq!(ast.statements.len(), 17);
-        let StatementKind::Frame { rotation: Some((_, rotations)), .. } = &ast.statements[3].kind else { panic!() };
+        let StatementKind::Frame {
+            rotation: Some((_, rotations)),
+            ..
+        } = &ast.statements[3].kind
+        else {
+            panic!()
+        };
         assert_eq!(rotations.len(), 2);
     }
 
     #[test]
     fn continuation_lines() {
-        let ast = parse_ok("body disc mass m \\\n  at C frame B \\\n  inertia a, b, c\npoint P = f(a,\n  b)\n");
+        let ast = parse_ok(
+            "body disc mass m \\\n  at C frame B \\\n  inertia a, b, c\npoint P = f(a,\n  b)\n",
+        );
         assert_eq!(ast.statements.len(), 2);
     }
 
     #[test]
     fn several_errors_are_reported_and_good_lines_kept() {
-        let (ast, diagnostics) = parse("coordinates x\npoint = 3\nframe N\ngravity (1 +\nforce 1 at\nfrobnicate x\n");
+        let (ast, diagnostics) =
+            parse("coordinates x\npoint = 3\nframe N\ngravity (1 +\nforce 1 at\nfrobnicate x\n");
         assert_eq!(diagnostics.len(), 4, "{diagnostics:#?}");
         assert_eq!(ast.statements.len(), 2);
     }
@@ -690,12 +903,21 @@ mod tests {
     fn deep_nesting_is_an_error_not_a_crash() {
         let deep = format!("gravity {}x{}", "(".repeat(10_000), ")".repeat(10_000));
         let (_, diagnostics) = parse(&deep);
-        assert!(matches!(diagnostics[0].kind, DiagnosticKind::TooDeep { .. }));
+        assert!(matches!(
+            diagnostics[0].kind,
+            DiagnosticKind::TooDeep { .. }
+        ));
         let long = format!("gravity x{}", "+x".repeat(10_000));
         let (_, diagnostics) = parse(&long);
-        assert!(matches!(diagnostics[0].kind, DiagnosticKind::TooDeep { .. }));
+        assert!(matches!(
+            diagnostics[0].kind,
+            DiagnosticKind::TooDeep { .. }
+        ));
         let minus = format!("gravity {}x", "-".repeat(10_000));
         let (_, diagnostics) = parse(&minus);
-        assert!(matches!(diagnostics[0].kind, DiagnosticKind::TooDeep { .. }));
+        assert!(matches!(
+            diagnostics[0].kind,
+            DiagnosticKind::TooDeep { .. }
+        ));
     }
 }

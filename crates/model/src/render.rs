@@ -18,7 +18,10 @@ pub struct RenderOptions {
 
 impl Default for RenderOptions {
     fn default() -> RenderOptions {
-        RenderOptions { color: false, unicode: true }
+        RenderOptions {
+            color: false,
+            unicode: true,
+        }
     }
 }
 
@@ -41,13 +44,22 @@ impl RenderOptions {
 /// Render `diagnostics` about `source` (read from `file_name`) with the offending text
 /// underlined, the message, related places and the help. Diagnostics are sorted by position.
 #[must_use]
-pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str, options: RenderOptions) -> String {
+pub fn render(
+    diagnostics: &[Diagnostic],
+    file_name: &str,
+    source: &str,
+    options: RenderOptions,
+) -> String {
     let mut sorted: Vec<&Diagnostic> = diagnostics.iter().collect();
     sorted.sort_by_key(|d| (d.span.start, d.span.end));
     let mut out = Vec::new();
     let config = Config::new()
         .with_color(options.color)
-        .with_char_set(if options.unicode { CharSet::Unicode } else { CharSet::Ascii })
+        .with_char_set(if options.unicode {
+            CharSet::Unicode
+        } else {
+            CharSet::Ascii
+        })
         .with_index_type(IndexType::Byte);
     let clamp = |span: Span| {
         // Spans come from this source, but clamp anyway so that a diagnostic paired with the
@@ -62,7 +74,12 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str, options
         };
         let primary = clamp(diagnostic.span);
         let mut label = Label::new((file_name, primary.clone())).with_order(0);
-        label = label.with_message(diagnostic.label.clone().unwrap_or_else(|| diagnostic.message()));
+        label = label.with_message(
+            diagnostic
+                .label
+                .clone()
+                .unwrap_or_else(|| diagnostic.message()),
+        );
         if options.color {
             label = label.with_color(Color::Red);
         }
@@ -85,8 +102,14 @@ pub fn render(diagnostics: &[Diagnostic], file_name: &str, source: &str, options
         }
         // Writing into a Vec<u8> cannot fail; if ariadne ever reports an error, fall back to
         // the short form so that the diagnostic is not lost.
-        if report.finish().write((file_name, Source::from(source)), &mut out).is_err() {
-            out.extend_from_slice(render_short(std::slice::from_ref(diagnostic), file_name, source).as_bytes());
+        if report
+            .finish()
+            .write((file_name, Source::from(source)), &mut out)
+            .is_err()
+        {
+            out.extend_from_slice(
+                render_short(std::slice::from_ref(diagnostic), file_name, source).as_bytes(),
+            );
         }
     }
     String::from_utf8_lossy(&out).into_owned()

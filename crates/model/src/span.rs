@@ -22,14 +22,20 @@ impl Span {
         if start <= end {
             Span { start, end }
         } else {
-            Span { start: end, end: start }
+            Span {
+                start: end,
+                end: start,
+            }
         }
     }
 
     /// The smallest span covering both `self` and `other`.
     #[must_use]
     pub fn to(self, other: Span) -> Span {
-        Span { start: self.start.min(other.start), end: self.end.max(other.end) }
+        Span {
+            start: self.start.min(other.start),
+            end: self.end.max(other.end),
+        }
     }
 
     /// The span as a `Range<usize>`.
@@ -87,7 +93,10 @@ impl<'a> LineIndex<'a> {
     pub fn new(source: &'a str) -> LineIndex<'a> {
         let mut line_starts = vec![0];
         line_starts.extend(source.match_indices('\n').map(|(i, _)| i + 1));
-        LineIndex { source, line_starts }
+        LineIndex {
+            source,
+            line_starts,
+        }
     }
 
     /// Line and column of byte `offset`. Offsets past the end clamp to the end of the text, and
@@ -96,22 +105,38 @@ impl<'a> LineIndex<'a> {
     pub fn line_col(&self, offset: usize) -> LineCol {
         let offset = offset.min(self.source.len());
         // `partition_point` gives the number of line starts <= offset, which is at least 1.
-        let line = self.line_starts.partition_point(|&start| start <= offset).max(1);
+        let line = self
+            .line_starts
+            .partition_point(|&start| start <= offset)
+            .max(1);
         let line_start = self.line_starts.get(line - 1).copied().unwrap_or(0);
         let prefix = self.source.get(line_start..offset).map_or_else(
             // Not a char boundary: count the characters that start before `offset`.
-            || self.source.char_indices().filter(|&(i, _)| i >= line_start && i < offset).count(),
+            || {
+                self.source
+                    .char_indices()
+                    .filter(|&(i, _)| i >= line_start && i < offset)
+                    .count()
+            },
             |text| text.chars().count(),
         );
-        LineCol { line, column: prefix + 1 }
+        LineCol {
+            line,
+            column: prefix + 1,
+        }
     }
 
     /// The text of line `line` (1-based) without its line break, or `None` past the end.
     #[must_use]
     pub fn line_text(&self, line: usize) -> Option<&'a str> {
         let start = *self.line_starts.get(line.checked_sub(1)?)?;
-        let end = self.line_starts.get(line).map_or(self.source.len(), |&next| next - 1);
-        self.source.get(start..end).map(|text| text.trim_end_matches('\r'))
+        let end = self
+            .line_starts
+            .get(line)
+            .map_or(self.source.len(), |&next| next - 1);
+        self.source
+            .get(start..end)
+            .map(|text| text.trim_end_matches('\r'))
     }
 }
 

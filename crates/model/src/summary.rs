@@ -36,16 +36,29 @@ impl Model {
     #[must_use]
     pub fn summary(&self) -> Summary {
         let holonomic = self.constraints.iter().filter(|c| c.is_holonomic()).count();
-        let free: Vec<String> = self.free_coordinates().map(|(_, c)| c.name.name.clone()).collect();
+        let free: Vec<String> = self
+            .free_coordinates()
+            .map(|(_, c)| c.name.name.clone())
+            .collect();
         let driven = self
             .coordinates
             .iter()
-            .filter_map(|c| c.driven.as_ref().map(|motion| format!("{} = {}", c.name.name, self.display(motion))))
+            .filter_map(|c| {
+                c.driven
+                    .as_ref()
+                    .map(|motion| format!("{} = {}", c.name.name, self.display(motion)))
+            })
             .collect();
         let mut bodies: Vec<String> = self
             .particles
             .iter()
-            .map(|p| format!("particle at {}, mass {}", self.point(p.point).name.name, self.display(&p.mass)))
+            .map(|p| {
+                format!(
+                    "particle at {}, mass {}",
+                    self.point(p.point).name.name,
+                    self.display(&p.mass)
+                )
+            })
             .collect();
         bodies.extend(self.bodies.iter().map(|b| {
             format!(
@@ -56,12 +69,19 @@ impl Model {
                 self.frame(b.frame).name.name
             )
         }));
-        let loads = self.loads.iter().map(|item| self.describe_load(&item.load)).collect();
+        let loads = self
+            .loads
+            .iter()
+            .map(|item| self.describe_load(&item.load))
+            .collect();
         let constraints = self
             .constraints
             .iter()
             .map(|c| {
-                let name = c.name.as_ref().map_or_else(String::new, |n| format!("{}: ", n.name));
+                let name = c
+                    .name
+                    .as_ref()
+                    .map_or_else(String::new, |n| format!("{}: ", n.name));
                 let what = match &c.kind {
                     ConstraintKind::Holonomic { lhs, rhs } => {
                         format!("holonomic, {} = {}", self.display(lhs), self.display(rhs))
@@ -74,8 +94,12 @@ impl Model {
                         self.body(*body).name.name,
                         self.point(*contact).name.name
                     ),
-                    ConstraintKind::Gear { driver, driven, ratio } => format!(
-                        "gear, {}' = {}·{}'",
+                    ConstraintKind::Gear {
+                        driver,
+                        driven,
+                        ratio,
+                    } => format!(
+                        "gear, {}' = ({})·{}'",
                         self.coordinate(*driven).name.name,
                         self.display(ratio),
                         self.coordinate(*driver).name.name
@@ -90,9 +114,13 @@ impl Model {
             .map(|r| match r {
                 ReactionTarget::Constraint(id) => {
                     let c = self.constraint(*id);
-                    c.name.as_ref().map_or_else(|| "(unnamed)".to_string(), |n| n.name.clone())
+                    c.name
+                        .as_ref()
+                        .map_or_else(|| "(unnamed)".to_string(), |n| n.name.clone())
                 }
-                ReactionTarget::Driven(id) => format!("driving force of {}", self.coordinate(*id).name.name),
+                ReactionTarget::Driven(id) => {
+                    format!("driving force of {}", self.coordinate(*id).name.name)
+                }
             })
             .collect();
         Summary {
@@ -110,24 +138,45 @@ impl Model {
 
     fn describe_load(&self, load: &Load) -> String {
         let connection = |c: &Connection| match c {
-            Connection::Points { from, to } => format!("from {} to {}", self.display(from), self.display(to)),
+            Connection::Points { from, to } => {
+                format!("from {} to {}", self.display(from), self.display(to))
+            }
             Connection::Scalar(value) => format!("on {}", self.display(value)),
         };
         match load {
             Load::Gravity(g) => format!("gravity {}", self.display(g)),
-            Load::Spring { stiffness, connection: c, rest } => {
-                let rest = rest.as_ref().map_or_else(String::new, |r| format!(", rest {}", self.display(r)));
+            Load::Spring {
+                stiffness,
+                connection: c,
+                rest,
+            } => {
+                let rest = rest
+                    .as_ref()
+                    .map_or_else(String::new, |r| format!(", rest {}", self.display(r)));
                 format!("spring {} {}{rest}", self.display(stiffness), connection(c))
             }
-            Load::Damper { coefficient, connection: c } => {
+            Load::Damper {
+                coefficient,
+                connection: c,
+            } => {
                 format!("damper {} {}", self.display(coefficient), connection(c))
             }
             Load::Dissipation(d) => format!("dissipation {}", self.display(d)),
             Load::Potential(v) => format!("potential {}", self.display(v)),
-            Load::Force { force, point } => format!("force {} at {}", self.display(force), self.display(point)),
-            Load::Couple { moment, body } => format!("couple {} on {}", self.display(moment), self.body(*body).name.name),
+            Load::Force { force, point } => {
+                format!("force {} at {}", self.display(force), self.display(point))
+            }
+            Load::Couple { moment, body } => format!(
+                "couple {} on {}",
+                self.display(moment),
+                self.body(*body).name.name
+            ),
             Load::GeneralizedForce { force, coordinate } => {
-                format!("generalized force {} on {}", self.display(force), self.coordinate(*coordinate).name.name)
+                format!(
+                    "generalized force {} on {}",
+                    self.display(force),
+                    self.coordinate(*coordinate).name.name
+                )
             }
         }
     }
@@ -149,14 +198,34 @@ impl fmt::Display for Summary {
             self.coordinates.len(),
             if self.coordinates.len() == 1 { "" } else { "s" },
             self.holonomic_constraints,
-            if self.holonomic_constraints == 1 { "" } else { "s" },
+            if self.holonomic_constraints == 1 {
+                ""
+            } else {
+                "s"
+            },
             if self.velocity_constraints > 0 {
-                format!(", plus {} velocity constraint{}", self.velocity_constraints, if self.velocity_constraints == 1 { "" } else { "s" })
+                format!(
+                    ", plus {} velocity constraint{}",
+                    self.velocity_constraints,
+                    if self.velocity_constraints == 1 {
+                        ""
+                    } else {
+                        "s"
+                    }
+                )
             } else {
                 String::new()
             }
         )?;
-        writeln!(f, "coordinates: {}", if self.coordinates.is_empty() { "none".to_string() } else { self.coordinates.join(", ") })?;
+        writeln!(
+            f,
+            "coordinates: {}",
+            if self.coordinates.is_empty() {
+                "none".to_string()
+            } else {
+                self.coordinates.join(", ")
+            }
+        )?;
         if !self.driven.is_empty() {
             list(f, "driven coordinates", &self.driven)?;
         }

@@ -8,7 +8,8 @@ fn examples_dir() -> PathBuf {
 }
 
 fn model_files(dir: &Path, found: &mut Vec<PathBuf>) {
-    let entries = std::fs::read_dir(dir).unwrap_or_else(|e| panic!("reading {}: {e}", dir.display()));
+    let entries =
+        std::fs::read_dir(dir).unwrap_or_else(|e| panic!("reading {}: {e}", dir.display()));
     for entry in entries {
         let path = entry.expect("a directory entry").path();
         if path.is_dir() {
@@ -24,7 +25,10 @@ fn load(path: &Path) -> model::Model {
     let name = path.display().to_string();
     match model::load(&source) {
         Ok(model) => model,
-        Err(errors) => panic!("{}", model::render(&errors.0, &name, &source, model::RenderOptions::default())),
+        Err(errors) => panic!(
+            "{}",
+            model::render(&errors.0, &name, &source, model::RenderOptions::default())
+        ),
     }
 }
 
@@ -33,7 +37,10 @@ fn every_example_checks_cleanly() {
     let mut files = Vec::new();
     model_files(&examples_dir(), &mut files);
     files.sort();
-    assert!(files.len() >= 14, "expected the seed and classic examples, found {files:?}");
+    assert!(
+        files.len() >= 14,
+        "expected the seed and classic examples, found {files:?}"
+    );
     for path in &files {
         let model = load(path);
         // Every example can be run numerically as it stands.

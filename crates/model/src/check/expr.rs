@@ -20,19 +20,35 @@ pub(crate) struct Place {
 
 impl Place {
     pub(crate) const fn constant(what: &'static str) -> Place {
-        Place { what, level: Level::Constant, rates: false }
+        Place {
+            what,
+            level: Level::Constant,
+            rates: false,
+        }
     }
 
     pub(crate) const fn time(what: &'static str) -> Place {
-        Place { what, level: Level::Time, rates: false }
+        Place {
+            what,
+            level: Level::Time,
+            rates: false,
+        }
     }
 
     pub(crate) const fn configuration(what: &'static str) -> Place {
-        Place { what, level: Level::Configuration, rates: false }
+        Place {
+            what,
+            level: Level::Configuration,
+            rates: false,
+        }
     }
 
     pub(crate) const fn motion(what: &'static str) -> Place {
-        Place { what, level: Level::Configuration, rates: true }
+        Place {
+            what,
+            level: Level::Configuration,
+            rates: true,
+        }
     }
 }
 
@@ -60,9 +76,18 @@ impl ExprChecker<'_> {
                 Type::Vector => "Multiply by a unit vector such as `N.x` to make a vector.",
             };
             self.diagnostics.push(
-                Diagnostic::new(DiagnosticKind::TypeMismatch { expected, found: checked.ty }, expr.span)
-                    .with_label(format!("this is a {}", checked.ty))
-                    .with_help(format!("{} needs a {expected}. {help}", capitalize(self.place.what))),
+                Diagnostic::new(
+                    DiagnosticKind::TypeMismatch {
+                        expected,
+                        found: checked.ty,
+                    },
+                    expr.span,
+                )
+                .with_label(format!("this is a {}", checked.ty))
+                .with_help(format!(
+                    "{} needs a {expected}. {help}",
+                    capitalize(self.place.what)
+                )),
             );
             return None;
         }
@@ -74,9 +99,13 @@ impl ExprChecker<'_> {
         let span = expr.span;
         let typed = |kind, ty| Some(Expr { kind, span, ty });
         match &expr.kind {
-            ast::ExprKind::Number(number) => {
-                typed(ExprKind::Number { text: number.text.clone(), value: number.value }, Type::Scalar)
-            }
+            ast::ExprKind::Number(number) => typed(
+                ExprKind::Number {
+                    text: number.text.clone(),
+                    value: number.value,
+                },
+                Type::Scalar,
+            ),
             ast::ExprKind::Name(ident) => self.name(ident),
             ast::ExprKind::Rate(ident) => {
                 let entry = match self.scope.get(&ident.name) {
@@ -92,7 +121,10 @@ impl ExprChecker<'_> {
                     _ => {
                         self.diagnostics.push(
                             Diagnostic::new(
-                                DiagnosticKind::RateOfNonCoordinate { name: ident.name.clone(), kind: entry.kind },
+                                DiagnosticKind::RateOfNonCoordinate {
+                                    name: ident.name.clone(),
+                                    kind: entry.kind,
+                                },
                                 span,
                             )
                             .with_help("Only coordinates have rates; remove the `'`."),
@@ -119,15 +151,24 @@ impl ExprChecker<'_> {
                 typed(ExprKind::Rate(id), Type::Scalar)
             }
             ast::ExprKind::UnitVector { frame, axis } => {
-                let entry = self.scope.expect_kind(frame, NameKind::Frame, self.diagnostics)?;
-                let Target::Frame(id) = entry.target else { return None };
+                let entry = self
+                    .scope
+                    .expect_kind(frame, NameKind::Frame, self.diagnostics)?;
+                let Target::Frame(id) = entry.target else {
+                    return None;
+                };
                 let Some(axis_value) = Axis::from_name(&axis.name) else {
                     let mut diagnostic = Diagnostic::new(
-                        DiagnosticKind::UnknownAxis { frame: frame.name.clone(), axis: axis.name.clone() },
+                        DiagnosticKind::UnknownAxis {
+                            frame: frame.name.clone(),
+                            axis: axis.name.clone(),
+                        },
                         axis.span,
                     );
                     diagnostic = match suggest(&axis.name, ["x", "y", "z"]) {
-                        Some(best) => diagnostic.with_help(format!("Did you mean `{}.{best}`?", frame.name)),
+                        Some(best) => {
+                            diagnostic.with_help(format!("Did you mean `{}.{best}`?", frame.name))
+                        }
                         None => diagnostic.with_help(format!(
                             "A frame's unit vectors are `{0}.x`, `{0}.y` and `{0}.z`.",
                             frame.name
@@ -139,7 +180,13 @@ impl ExprChecker<'_> {
                 if !self.level_ok(entry.level, frame) {
                     return None;
                 }
-                typed(ExprKind::UnitVector { frame: id, axis: axis_value }, Type::Vector)
+                typed(
+                    ExprKind::UnitVector {
+                        frame: id,
+                        axis: axis_value,
+                    },
+                    Type::Vector,
+                )
             }
             ast::ExprKind::Neg(operand) => {
                 let operand = self.check(operand)?;
@@ -152,7 +199,14 @@ impl ExprChecker<'_> {
                 let rhs = self.check(rhs);
                 let (lhs, rhs) = (lhs?, rhs?);
                 let ty = self.binary_type(*op, &lhs, &rhs, span)?;
-                typed(ExprKind::Binary { op: *op, lhs: Box::new(lhs), rhs: Box::new(rhs) }, ty)
+                typed(
+                    ExprKind::Binary {
+                        op: *op,
+                        lhs: Box::new(lhs),
+                        rhs: Box::new(rhs),
+                    },
+                    ty,
+                )
             }
             ast::ExprKind::Call { function, args } => self.call(function, args, span),
         }
@@ -191,10 +245,15 @@ impl ExprChecker<'_> {
                 let Some(entry) = self.scope.get(name).copied() else {
                     let diagnostic = if Function::from_name(name).is_some() {
                         Diagnostic::new(
-                            DiagnosticKind::NotAValue { name: name.to_string(), kind: NameKind::Builtin },
+                            DiagnosticKind::NotAValue {
+                                name: name.to_string(),
+                                kind: NameKind::Builtin,
+                            },
                             span,
                         )
-                        .with_help(format!("`{name}` is a function: call it, as in `{name}(theta)`."))
+                        .with_help(format!(
+                            "`{name}` is a function: call it, as in `{name}(theta)`."
+                        ))
                     } else {
                         self.scope.not_found(ident, None)
                     };
@@ -215,8 +274,14 @@ impl ExprChecker<'_> {
                             _ => "Constraints are not values; name them in `reactions`.".to_string(),
                         };
                         self.diagnostics.push(
-                            Diagnostic::new(DiagnosticKind::NotAValue { name: name.to_string(), kind: entry.kind }, span)
-                                .with_help(help),
+                            Diagnostic::new(
+                                DiagnosticKind::NotAValue {
+                                    name: name.to_string(),
+                                    kind: entry.kind,
+                                },
+                                span,
+                            )
+                            .with_help(help),
                         );
                         return None;
                     }
@@ -235,38 +300,80 @@ impl ExprChecker<'_> {
         Some(Expr { kind, span, ty })
     }
 
-    fn binary_type(&mut self, op: BinaryOp, lhs: &Expr, rhs: &Expr, span: crate::span::Span) -> Option<Type> {
+    fn binary_type(
+        &mut self,
+        op: BinaryOp,
+        lhs: &Expr,
+        rhs: &Expr,
+        span: crate::span::Span,
+    ) -> Option<Type> {
         use Type::{Scalar, Vector};
         let (result, operation, help) = match (op, lhs.ty, rhs.ty) {
             (BinaryOp::Add | BinaryOp::Sub, a, b) if a == b => (Some(a), "", ""),
-            (BinaryOp::Add, _, _) => (None, "add", "Both sides of `+` must be scalars, or both vectors."),
-            (BinaryOp::Sub, _, _) => (None, "subtract", "Both sides of `-` must be scalars, or both vectors."),
-            (BinaryOp::Mul, Vector, Vector) => {
-                (None, "multiply", "Use `dot(u, v)` for the scalar product or `cross(u, v)` for the vector product.")
-            }
-            (BinaryOp::Mul, a, b) => (Some(if a == Vector || b == Vector { Vector } else { Scalar }), "", ""),
+            (BinaryOp::Add, _, _) => (
+                None,
+                "add",
+                "Both sides of `+` must be scalars, or both vectors.",
+            ),
+            (BinaryOp::Sub, _, _) => (
+                None,
+                "subtract",
+                "Both sides of `-` must be scalars, or both vectors.",
+            ),
+            (BinaryOp::Mul, Vector, Vector) => (
+                None,
+                "multiply",
+                "Use `dot(u, v)` for the scalar product or `cross(u, v)` for the vector product.",
+            ),
+            (BinaryOp::Mul, a, b) => (
+                Some(if a == Vector || b == Vector {
+                    Vector
+                } else {
+                    Scalar
+                }),
+                "",
+                "",
+            ),
             (BinaryOp::Div, a, Scalar) => (Some(a), "", ""),
             (BinaryOp::Div, _, Vector) => (None, "divide", "Only division by a scalar is defined."),
             (BinaryOp::Pow, Scalar, Scalar) => (Some(Scalar), "", ""),
-            (BinaryOp::Pow, _, _) => {
-                (None, "raise to a power", "Powers are for scalars; for |v|² write `dot(v, v)`.")
-            }
+            (BinaryOp::Pow, _, _) => (
+                None,
+                "raise to a power",
+                "Powers are for scalars; for |v|² write `dot(v, v)`.",
+            ),
         };
         if result.is_none() {
             self.diagnostics.push(
-                Diagnostic::new(DiagnosticKind::InvalidOperands { operation, lhs: lhs.ty, rhs: rhs.ty }, span)
-                    .with_related(lhs.span, format!("this is a {}", lhs.ty))
-                    .with_related(rhs.span, format!("this is a {}", rhs.ty))
-                    .with_help(help),
+                Diagnostic::new(
+                    DiagnosticKind::InvalidOperands {
+                        operation,
+                        lhs: lhs.ty,
+                        rhs: rhs.ty,
+                    },
+                    span,
+                )
+                .with_related(lhs.span, format!("this is a {}", lhs.ty))
+                .with_related(rhs.span, format!("this is a {}", rhs.ty))
+                .with_help(help),
             );
         }
         result
     }
 
-    fn call(&mut self, function: &ast::Ident, args: &[ast::Expr], span: crate::span::Span) -> Option<Expr> {
+    fn call(
+        &mut self,
+        function: &ast::Ident,
+        args: &[ast::Expr],
+        span: crate::span::Span,
+    ) -> Option<Expr> {
         let Some(resolved) = Function::from_name(&function.name) else {
-            let mut diagnostic =
-                Diagnostic::new(DiagnosticKind::UnknownFunction { name: function.name.clone() }, function.span);
+            let mut diagnostic = Diagnostic::new(
+                DiagnosticKind::UnknownFunction {
+                    name: function.name.clone(),
+                },
+                function.span,
+            );
             diagnostic = if let Some(entry) = self.scope.get(&function.name) {
                 diagnostic.with_help(format!(
                     "`{0}` is {1}; to multiply, write `{0}*(…)`.",
@@ -316,13 +423,22 @@ impl ExprChecker<'_> {
                 None => ok = false,
             }
         }
-        ok.then_some(Expr { kind: ExprKind::Call { function: resolved, args: checked }, span, ty: result })
+        ok.then_some(Expr {
+            kind: ExprKind::Call {
+                function: resolved,
+                args: checked,
+            },
+            span,
+            ty: result,
+        })
     }
 }
 
 fn capitalize(text: &str) -> String {
     let mut chars = text.chars();
-    chars.next().map_or_else(String::new, |first| first.to_uppercase().chain(chars).collect())
+    chars.next().map_or_else(String::new, |first| {
+        first.to_uppercase().chain(chars).collect()
+    })
 }
 
 /// The polynomial degree of `expr` in the rates, or `None` when rates appear other than
@@ -339,7 +455,9 @@ pub(crate) fn rate_degree(expr: &Expr) -> Option<u32> {
                 BinaryOp::Div => (b == 0).then_some(a),
                 BinaryOp::Pow => match (&rhs.kind, b) {
                     _ if a == 0 && b == 0 => Some(0),
-                    (ExprKind::Number { value, .. }, 0) if *value >= 0.0 && value.fract() == 0.0 && *value < 64.0 => {
+                    (ExprKind::Number { value, .. }, 0)
+                        if *value >= 0.0 && value.fract() == 0.0 && *value < 64.0 =>
+                    {
                         Some(a.saturating_mul(*value as u32))
                     }
                     _ => None,

@@ -30,7 +30,13 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
             inputs: Vec::new(),
             constants: Vec::new(),
             frames: Vec::new(),
-            points: vec![Point { name: Name { name: "origin".to_string(), span: Span::default() }, position: None }],
+            points: vec![Point {
+                name: Name {
+                    name: "origin".to_string(),
+                    span: Span::default(),
+                },
+                position: None,
+            }],
             particles: Vec::new(),
             bodies: Vec::new(),
             loads: Vec::new(),
@@ -42,6 +48,8 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
         },
         inertial: None,
         end: ast.statements.last().map_or(0, |s| s.span.end),
+        point_levels: vec![Level::Constant],
+        frame_levels: Vec::new(),
     };
     for statement in &ast.statements {
         checker.statement(statement);
@@ -60,6 +68,11 @@ struct Checker {
     model: Model,
     inertial: Option<(String, Span)>,
     end: usize,
+    /// The level of each point and frame, by id, computed once at its declaration: looking
+    /// it up instead of recursing through the chain of definitions keeps the stack flat
+    /// however long the chain is.
+    point_levels: Vec<Level>,
+    frame_levels: Vec<Level>,
 }
 
 fn id(len: usize) -> u32 {
@@ -68,24 +81,40 @@ fn id(len: usize) -> u32 {
 }
 
 fn name(ident: &Ident) -> Name {
-    Name { name: ident.name.clone(), span: ident.span }
+    Name {
+        name: ident.name.clone(),
+        span: ident.span,
+    }
 }
 
 impl Checker {
     fn expr(&mut self, expr: &ast::Expr, ty: Type, place: Place) -> Option<Expr> {
-        ExprChecker { scope: &self.scope, diagnostics: &mut self.diagnostics, place }.expect(expr, ty)
+        ExprChecker {
+            scope: &self.scope,
+            diagnostics: &mut self.diagnostics,
+            place,
+        }
+        .expect(expr, ty)
     }
 
     fn any_expr(&mut self, expr: &ast::Expr, place: Place) -> Option<Expr> {
-        ExprChecker { scope: &self.scope, diagnostics: &mut self.diagnostics, place }.check(expr)
+        ExprChecker {
+            scope: &self.scope,
+            diagnostics: &mut self.diagnostics,
+            place,
+        }
+        .check(expr)
     }
 
     fn lookup(&mut self, ident: &Ident, kind: NameKind) -> Option<Target> {
-        self.scope.expect_kind(ident, kind, &mut self.diagnostics).map(|entry| entry.target)
+        self.scope
+            .expect_kind(ident, kind, &mut self.diagnostics)
+            .map(|entry| entry.target)
     }
 
     fn declare(&mut self, ident: &Ident, kind: NameKind, target: Target, level: Level) -> bool {
-        self.scope.declare(ident, kind, target, level, &mut self.diagnostics)
+        self.scope
+            .declare(ident, kind, target, level, &mut self.diagnostics)
     }
 
     /// Declare a name whose definition failed, so that its uses are not reported again.
@@ -98,7 +127,12 @@ impl Checker {
         match &expr.kind {
             ExprKind::Time | ExprKind::Input(_) => Level::Time,
             ExprKind::Coordinate(id) | ExprKind::Rate(id) => {
-                if self.model.coordinates.get(id.index()).is_some_and(|c| c.driven.is_some()) {
+                if self
+                    .model
+                    .coordinates
+                    .get(id.index())
+                    .is_some_and(|c| c.driven.is_some())
+                {
                     Level::Time
                 } else {
                     Level::Configuration
@@ -106,30 +140,32 @@ impl Checker {
             }
             ExprKind::Point(id) => self.point_level(*id),
             ExprKind::UnitVector { frame, .. } => self.frame_level(*frame),
-            ExprKind::Constant(_) | ExprKind::Parameter(_) | ExprKind::Number { .. } | ExprKind::Pi => {
-                Level::Constant
-            }
+            ExprKind::Constant(_)
+            | ExprKind::Parameter(_)
+            | ExprKind::Number { .. }
+            | ExprKind::Pi => Level::Constant,
             ExprKind::Neg(e) => self.level_of(e),
             ExprKind::Binary { lhs, rhs, .. } => self.level_of(lhs).max(self.level_of(rhs)),
-            ExprKind::Call { args, .. } => args.iter().map(|a| self.level_of(a)).max().unwrap_or(Level::Constant),
+            ExprKind::Call { args, .. } => args
+                .iter()
+                .map(|a| self.level_of(a))
+                .max()
+                .unwrap_or(Level::Constant),
         }
     }
 
     fn point_level(&self, id: PointId) -> Level {
-        match self.model.points.get(id.index()).and_then(|p| p.position.as_ref()) {
-            Some(position) => self.level_of(position),
-            None => Level::Constant,
-        }
+        self.point_levels
+            .get(id.index())
+            .copied()
+            .unwrap_or(Level::Configuration)
     }
 
     fn frame_level(&self, id: FrameId) -> Level {
-        match self.model.frames.get(id.index()).and_then(|f| f.rotation.as_ref()) {
-            Some((parent, rotations)) => rotations
-                .iter()
-                .map(|r| self.level_of(&r.angle))
-                .fold(self.frame_level(*parent), Level::max),
-            None => Level::Constant,
-        }
+        self.frame_levels
+            .get(id.index())
+            .copied()
+            .unwrap_or(Level::Configuration)
     }
 
     fn statement(&mut self, statement: &ast::Statement) {
@@ -138,107 +174,178 @@ impl Checker {
                 for ident in names {
                     let target = Target::Coordinate(CoordinateId(id(self.model.coordinates.len())));
                     if self.declare(ident, NameKind::Coordinate, target, Level::Configuration) {
-                        self.model.coordinates.push(Coordinate { name: name(ident), driven: None });
+                        self.model.coordinates.push(Coordinate {
+                            name: name(ident),
+                            driven: None,
+                        });
                     }
                 }
             }
             StatementKind::Parameters(bindings) => {
                 for Binding { name: ident, value } in bindings {
-                    let value = value.as_ref().map(|v| self.expr(v, Type::Scalar, Place::constant("a parameter value")));
+                    let value = value
+                        .as_ref()
+                        .map(|v| self.expr(v, Type::Scalar, Place::constant("a parameter value")));
                     if matches!(value, Some(None)) {
                         self.poison(ident, NameKind::Parameter);
                         continue;
                     }
                     let target = Target::Parameter(ParameterId(id(self.model.parameters.len())));
                     if self.declare(ident, NameKind::Parameter, target, Level::Constant) {
-                        self.model.parameters.push(Parameter { name: name(ident), value: value.flatten() });
+                        self.model.parameters.push(Parameter {
+                            name: name(ident),
+                            value: value.flatten(),
+                        });
                     }
                 }
             }
             StatementKind::Inputs(bindings) => {
                 for Binding { name: ident, value } in bindings {
-                    let value = value.as_ref().map(|v| self.expr(v, Type::Scalar, Place::time("an input value")));
+                    let value = value
+                        .as_ref()
+                        .map(|v| self.expr(v, Type::Scalar, Place::time("an input value")));
                     if matches!(value, Some(None)) {
                         self.poison(ident, NameKind::Input);
                         continue;
                     }
                     let target = Target::Input(InputId(id(self.model.inputs.len())));
                     if self.declare(ident, NameKind::Input, target, Level::Time) {
-                        self.model.inputs.push(Input { name: name(ident), value: value.flatten() });
+                        self.model.inputs.push(Input {
+                            name: name(ident),
+                            value: value.flatten(),
+                        });
                     }
                 }
             }
             StatementKind::Constants(bindings) => {
                 for Binding { name: ident, value } in bindings {
-                    let Some(value) = value.as_ref().and_then(|v| self.any_expr(v, Place::constant("a constant")))
+                    let Some(value) = value
+                        .as_ref()
+                        .and_then(|v| self.any_expr(v, Place::constant("a constant")))
                     else {
                         self.poison(ident, NameKind::Constant);
                         continue;
                     };
-                    let target = Target::Constant(ConstantId(id(self.model.constants.len())), value.ty);
+                    let target =
+                        Target::Constant(ConstantId(id(self.model.constants.len())), value.ty);
                     if self.declare(ident, NameKind::Constant, target, Level::Constant) {
-                        self.model.constants.push(Constant { name: name(ident), value });
+                        self.model.constants.push(Constant {
+                            name: name(ident),
+                            value,
+                        });
                     }
                 }
             }
             StatementKind::Driven(bindings) => {
                 for Binding { name: ident, value } in bindings {
-                    let Some(value) = value
-                        .as_ref()
-                        .and_then(|v| self.expr(v, Type::Scalar, Place::time("a driven coordinate's motion")))
-                    else {
+                    let Some(value) = value.as_ref().and_then(|v| {
+                        self.expr(v, Type::Scalar, Place::time("a driven coordinate's motion"))
+                    }) else {
                         self.poison(ident, NameKind::DrivenCoordinate);
                         continue;
                     };
                     let target = Target::Coordinate(CoordinateId(id(self.model.coordinates.len())));
                     if self.declare(ident, NameKind::DrivenCoordinate, target, Level::Time) {
-                        self.model.coordinates.push(Coordinate { name: name(ident), driven: Some(value) });
+                        self.model.coordinates.push(Coordinate {
+                            name: name(ident),
+                            driven: Some(value),
+                        });
                     }
                 }
             }
-            StatementKind::Frame { name: ident, rotation } => self.frame(ident, rotation.as_ref()),
-            StatementKind::Point { name: ident, position } => {
-                let Some(position) = self.expr(position, Type::Vector, Place::configuration("a point's position"))
-                else {
+            StatementKind::Frame {
+                name: ident,
+                rotation,
+            } => self.frame(ident, rotation.as_ref()),
+            StatementKind::Point {
+                name: ident,
+                position,
+            } => {
+                let Some(position) = self.expr(
+                    position,
+                    Type::Vector,
+                    Place::configuration("a point's position"),
+                ) else {
                     self.poison(ident, NameKind::Point);
                     return;
                 };
                 let target = Target::Point(PointId(id(self.model.points.len())));
                 let level = self.level_of(&position);
                 if self.declare(ident, NameKind::Point, target, level) {
-                    self.model.points.push(Point { name: name(ident), position: Some(position) });
+                    self.point_levels.push(level);
+                    self.model.points.push(Point {
+                        name: name(ident),
+                        position: Some(position),
+                    });
                 }
             }
             StatementKind::Particle { point, mass } => {
                 let target = self.lookup(point, NameKind::Point);
                 let mass = self.expr(mass, Type::Scalar, Place::constant("a mass"));
                 if let (Some(Target::Point(point)), Some(mass)) = (target, mass) {
-                    self.model.particles.push(Particle { point, mass, span: statement.span });
+                    self.model.particles.push(Particle {
+                        point,
+                        mass,
+                        span: statement.span,
+                    });
                 }
             }
-            StatementKind::Body { name: ident, clauses } => self.body(ident, clauses),
+            StatementKind::Body {
+                name: ident,
+                clauses,
+            } => self.body(ident, clauses),
             StatementKind::Gravity(g) => {
                 if let Some(g) = self.expr(g, Type::Vector, Place::constant("gravity")) {
                     self.load(Load::Gravity(g), statement.span);
                 }
             }
-            StatementKind::Spring { stiffness, connection, rest } => {
-                let stiffness = self.expr(stiffness, Type::Scalar, Place::time("a spring's stiffness"));
+            StatementKind::Spring {
+                stiffness,
+                connection,
+                rest,
+            } => {
+                let stiffness =
+                    self.expr(stiffness, Type::Scalar, Place::time("a spring's stiffness"));
                 let connection = self.connection(connection, "a spring's ends");
-                let rest = rest.as_ref().map(|r| self.expr(r, Type::Scalar, Place::time("a spring's rest length")));
-                if let (Some(stiffness), Some(connection), None | Some(Some(_))) = (stiffness, connection, &rest) {
-                    self.load(Load::Spring { stiffness, connection, rest: rest.flatten() }, statement.span);
+                let rest = rest
+                    .as_ref()
+                    .map(|r| self.expr(r, Type::Scalar, Place::time("a spring's rest length")));
+                if let (Some(stiffness), Some(connection), None | Some(Some(_))) =
+                    (stiffness, connection, &rest)
+                {
+                    self.load(
+                        Load::Spring {
+                            stiffness,
+                            connection,
+                            rest: rest.flatten(),
+                        },
+                        statement.span,
+                    );
                 }
             }
-            StatementKind::Damper { coefficient, connection } => {
-                let coefficient = self.expr(coefficient, Type::Scalar, Place::time("a damping coefficient"));
+            StatementKind::Damper {
+                coefficient,
+                connection,
+            } => {
+                let coefficient = self.expr(
+                    coefficient,
+                    Type::Scalar,
+                    Place::time("a damping coefficient"),
+                );
                 let connection = self.connection(connection, "a damper's ends");
                 if let (Some(coefficient), Some(connection)) = (coefficient, connection) {
-                    self.load(Load::Damper { coefficient, connection }, statement.span);
+                    self.load(
+                        Load::Damper {
+                            coefficient,
+                            connection,
+                        },
+                        statement.span,
+                    );
                 }
             }
             StatementKind::Dissipation(d) => {
-                if let Some(d) = self.expr(d, Type::Scalar, Place::motion("a dissipation function")) {
+                if let Some(d) = self.expr(d, Type::Scalar, Place::motion("a dissipation function"))
+                {
                     if rate_degree(&d).is_none_or(|degree| degree > 2) {
                         self.diagnostics.push(
                             Diagnostic::new(
@@ -248,7 +355,9 @@ impl Checker {
                                 },
                                 d.span,
                             )
-                            .with_help("Write D = ½ c q'² (a polynomial of degree 2 in the rates)."),
+                            .with_help(
+                                "Write D = ½ c q'² (a polynomial of degree 2 in the rates).",
+                            ),
                         );
                     } else {
                         self.load(Load::Dissipation(d), statement.span);
@@ -262,7 +371,11 @@ impl Checker {
             }
             StatementKind::Force { force, point } => {
                 let force = self.expr(force, Type::Vector, Place::motion("a force"));
-                let point = self.expr(point, Type::Vector, Place::configuration("a point of application"));
+                let point = self.expr(
+                    point,
+                    Type::Vector,
+                    Place::configuration("a point of application"),
+                );
                 if let (Some(force), Some(point)) = (force, point) {
                     self.load(Load::Force { force, point }, statement.span);
                 }
@@ -281,7 +394,9 @@ impl Checker {
                     self.load(Load::GeneralizedForce { force, coordinate }, statement.span);
                 }
             }
-            StatementKind::Constraint { name: ident, spec } => self.constraint(ident.as_ref(), spec, statement.span),
+            StatementKind::Constraint { name: ident, spec } => {
+                self.constraint(ident.as_ref(), spec, statement.span)
+            }
             StatementKind::Reactions(names) => {
                 for ident in names {
                     self.reaction(ident);
@@ -296,7 +411,10 @@ impl Checker {
             StatementKind::Output(items) => {
                 for item in items {
                     if let Some(value) = self.any_expr(&item.value, Place::motion("an output")) {
-                        let label = item.name.as_ref().map_or_else(|| item.value.to_string(), |n| n.name.clone());
+                        let label = item
+                            .name
+                            .as_ref()
+                            .map_or_else(|| item.value.to_string(), |n| n.name.clone());
                         self.model.outputs.push(Output { label, value });
                     }
                 }
@@ -315,15 +433,26 @@ impl Checker {
         }
     }
 
-    fn connection(&mut self, connection: &ast::Connection, what: &'static str) -> Option<Connection> {
+    fn connection(
+        &mut self,
+        connection: &ast::Connection,
+        what: &'static str,
+    ) -> Option<Connection> {
         match connection {
             ast::Connection::Points { from, to } => {
                 let from = self.expr(from, Type::Vector, Place::configuration(what));
                 let to = self.expr(to, Type::Vector, Place::configuration(what));
-                Some(Connection::Points { from: from?, to: to? })
+                Some(Connection::Points {
+                    from: from?,
+                    to: to?,
+                })
             }
             ast::Connection::Scalar(value) => self
-                .expr(value, Type::Scalar, Place::configuration("the angle of a torsional element"))
+                .expr(
+                    value,
+                    Type::Scalar,
+                    Place::configuration("the angle of a torsional element"),
+                )
                 .map(Connection::Scalar),
         }
     }
@@ -348,7 +477,11 @@ impl Checker {
             }
             if self.declare(ident, NameKind::Frame, target, Level::Constant) {
                 self.inertial = Some((ident.name.clone(), ident.span));
-                self.model.frames.push(Frame { name: name(ident), rotation: None });
+                self.frame_levels.push(Level::Constant);
+                self.model.frames.push(Frame {
+                    name: name(ident),
+                    rotation: None,
+                });
             }
             return;
         };
@@ -356,12 +489,20 @@ impl Checker {
         let mut checked = Vec::new();
         let mut ok = true;
         for rotation in rotations {
-            let angle = self.expr(&rotation.angle, Type::Scalar, Place::configuration("a rotation angle"));
+            let angle = self.expr(
+                &rotation.angle,
+                Type::Scalar,
+                Place::configuration("a rotation angle"),
+            );
             let axis = Axis::from_name(&rotation.axis.name);
             if axis.is_none() {
                 let written = &rotation.axis.name;
-                let mut diagnostic =
-                    Diagnostic::new(DiagnosticKind::UnknownRotationAxis { axis: written.clone() }, rotation.axis.span);
+                let mut diagnostic = Diagnostic::new(
+                    DiagnosticKind::UnknownRotationAxis {
+                        axis: written.clone(),
+                    },
+                    rotation.axis.span,
+                );
                 diagnostic = match crate::diagnostic::suggest(written, ["x", "y", "z"]) {
                     Some(best) => diagnostic.with_help(format!("Did you mean `{best}`? Rotations are about `x`, `y` or `z`.")),
                     None if written.len() > 1 && written.ends_with(['x', 'y', 'z']) => diagnostic.with_help(format!(
@@ -379,8 +520,16 @@ impl Checker {
         }
         match parent {
             Some(Target::Frame(parent)) if ok => {
-                if self.declare(ident, NameKind::Frame, target, Level::Configuration) {
-                    self.model.frames.push(Frame { name: name(ident), rotation: Some((parent, checked)) });
+                let level = checked
+                    .iter()
+                    .map(|r| self.level_of(&r.angle))
+                    .fold(self.frame_level(parent), Level::max);
+                if self.declare(ident, NameKind::Frame, target, level) {
+                    self.frame_levels.push(level);
+                    self.model.frames.push(Frame {
+                        name: name(ident),
+                        rotation: Some((parent, checked)),
+                    });
                 }
             }
             _ => self.poison(ident, NameKind::Frame),
@@ -389,14 +538,23 @@ impl Checker {
 
     fn body(&mut self, ident: &Ident, clauses: &ast::BodyClauses) {
         let missing = |clause: &'static str, help: String| {
-            Diagnostic::new(DiagnosticKind::BodyMissing { body: ident.name.clone(), clause }, ident.span)
-                .with_help(help)
+            Diagnostic::new(
+                DiagnosticKind::BodyMissing {
+                    body: ident.name.clone(),
+                    clause,
+                },
+                ident.span,
+            )
+            .with_help(help)
         };
         let mut ok = true;
         let mass = match &clauses.mass {
             Some(mass) => self.expr(mass, Type::Scalar, Place::constant("a mass")),
             None => {
-                self.diagnostics.push(missing("mass", format!("Add `mass m` to `body {}`.", ident.name)));
+                self.diagnostics.push(missing(
+                    "mass",
+                    format!("Add `mass m` to `body {}`.", ident.name),
+                ));
                 None
             }
         };
@@ -433,17 +591,33 @@ impl Checker {
         };
         ok &= mass.is_some() && inertia.is_some();
         match (mass, centre, frame, inertia) {
-            (Some(mass), Some(Target::Point(centre)), Some(Target::Frame(frame)), Some(inertia)) if ok => {
+            (
+                Some(mass),
+                Some(Target::Point(centre)),
+                Some(Target::Frame(frame)),
+                Some(inertia),
+            ) if ok => {
                 let target = Target::Body(BodyId(id(self.model.bodies.len())));
                 if self.declare(ident, NameKind::Body, target, Level::Configuration) {
-                    self.model.bodies.push(Body { name: name(ident), mass, centre, frame, inertia });
+                    self.model.bodies.push(Body {
+                        name: name(ident),
+                        mass,
+                        centre,
+                        frame,
+                        inertia,
+                    });
                 }
             }
             _ => self.poison(ident, NameKind::Body),
         }
     }
 
-    fn inertia(&mut self, body: &Ident, clause: &ast::InertiaClause, centre: Option<Target>) -> Option<Inertia> {
+    fn inertia(
+        &mut self,
+        body: &Ident,
+        clause: &ast::InertiaClause,
+        centre: Option<Target>,
+    ) -> Option<Inertia> {
         let place = Place::constant("a moment of inertia");
         let mut components: [Option<Expr>; 6] = Default::default();
         let mut ok = true;
@@ -470,12 +644,20 @@ impl Checker {
                     let value = self.expr(value, Type::Scalar, place);
                     let Some(index) = index else {
                         let mut diagnostic = Diagnostic::new(
-                            DiagnosticKind::UnknownOption { option: key.name.clone(), statement: "inertia" },
+                            DiagnosticKind::UnknownOption {
+                                option: key.name.clone(),
+                                statement: "inertia",
+                            },
                             key.span,
                         );
-                        diagnostic = match crate::diagnostic::suggest(&key.name, ["xx", "yy", "zz", "xy", "xz", "yz"]) {
+                        diagnostic = match crate::diagnostic::suggest(
+                            &key.name,
+                            ["xx", "yy", "zz", "xy", "xz", "yz"],
+                        ) {
                             Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
-                            None => diagnostic.with_help("The components are `xx`, `yy`, `zz`, `xy`, `xz` and `yz`."),
+                            None => diagnostic.with_help(
+                                "The components are `xx`, `yy`, `zz`, `xy`, `xz` and `yz`.",
+                            ),
                         };
                         self.diagnostics.push(diagnostic);
                         ok = false;
@@ -483,8 +665,15 @@ impl Checker {
                     };
                     if std::mem::replace(&mut given[index], true) {
                         self.diagnostics.push(
-                            Diagnostic::new(DiagnosticKind::DuplicateClause { clause: key.name.clone() }, key.span)
-                                .with_help("Give each component once (the tensor is symmetric: `xy` is `yx`)."),
+                            Diagnostic::new(
+                                DiagnosticKind::DuplicateClause {
+                                    clause: key.name.clone(),
+                                },
+                                key.span,
+                            )
+                            .with_help(
+                                "Give each component once (the tensor is symmetric: `xy` is `yx`).",
+                            ),
                         );
                         ok = false;
                     }
@@ -493,7 +682,10 @@ impl Checker {
                         *slot = value;
                     }
                 }
-                for (index, clause_name) in ["moment `xx`", "moment `yy`", "moment `zz`"].into_iter().enumerate() {
+                for (index, clause_name) in ["moment `xx`", "moment `yy`", "moment `zz`"]
+                    .into_iter()
+                    .enumerate()
+                {
                     if !given[index] {
                         self.diagnostics.push(
                             Diagnostic::new(
@@ -518,7 +710,11 @@ impl Checker {
             },
         };
         if ok {
-            Some(Inertia { components, about: about?, principal })
+            Some(Inertia {
+                components,
+                about: about?,
+                principal,
+            })
         } else {
             None
         }
@@ -533,7 +729,9 @@ impl Checker {
                 match (lhs, rhs) {
                     (Some(lhs), Some(rhs)) => match (rate_degree(&lhs), rate_degree(&rhs)) {
                         (Some(0), Some(0)) => Some(ConstraintKind::Holonomic { lhs, rhs }),
-                        (Some(a), Some(b)) if a <= 1 && b <= 1 => Some(ConstraintKind::Velocity { lhs, rhs }),
+                        (Some(a), Some(b)) if a <= 1 && b <= 1 => {
+                            Some(ConstraintKind::Velocity { lhs, rhs })
+                        }
                         _ => {
                             self.diagnostics.push(
                                 Diagnostic::new(
@@ -561,12 +759,20 @@ impl Checker {
                     _ => None,
                 }
             }
-            ast::ConstraintSpec::Gear { driver, driven, ratio } => {
+            ast::ConstraintSpec::Gear {
+                driver,
+                driven,
+                ratio,
+            } => {
                 let driver = self.free_coordinate(driver);
                 let driven = self.free_coordinate(driven);
                 let ratio = self.expr(ratio, Type::Scalar, Place::configuration("a gear ratio"));
                 match (driver, driven, ratio) {
-                    (Some(driver), Some(driven), Some(ratio)) => Some(ConstraintKind::Gear { driver, driven, ratio }),
+                    (Some(driver), Some(driven), Some(ratio)) => Some(ConstraintKind::Gear {
+                        driver,
+                        driven,
+                        ratio,
+                    }),
                     _ => None,
                 }
             }
@@ -575,10 +781,18 @@ impl Checker {
             (Some(kind), Some(ident)) => {
                 let target = Target::Constraint(ConstraintId(id(self.model.constraints.len())));
                 if self.declare(ident, NameKind::Constraint, target, Level::Configuration) {
-                    self.model.constraints.push(Constraint { name: Some(name(ident)), kind, span });
+                    self.model.constraints.push(Constraint {
+                        name: Some(name(ident)),
+                        kind,
+                        span,
+                    });
                 }
             }
-            (Some(kind), None) => self.model.constraints.push(Constraint { name: None, kind, span }),
+            (Some(kind), None) => self.model.constraints.push(Constraint {
+                name: None,
+                kind,
+                span,
+            }),
             (None, Some(ident)) => self.poison(ident, NameKind::Constraint),
             (None, None) => {}
         }
@@ -586,12 +800,15 @@ impl Checker {
 
     fn reaction(&mut self, ident: &Ident) {
         let Some(entry) = self.scope.get(&ident.name).copied() else {
-            self.diagnostics.push(self.scope.not_found(ident, Some(NameKind::Constraint)));
+            self.diagnostics
+                .push(self.scope.not_found(ident, Some(NameKind::Constraint)));
             return;
         };
         let target = match entry.target {
             Target::Constraint(id) => ReactionTarget::Constraint(id),
-            Target::Coordinate(id) if entry.kind == NameKind::DrivenCoordinate => ReactionTarget::Driven(id),
+            Target::Coordinate(id) if entry.kind == NameKind::DrivenCoordinate => {
+                ReactionTarget::Driven(id)
+            }
             Target::Poisoned => return,
             _ => {
                 self.diagnostics.push(
@@ -610,10 +827,15 @@ impl Checker {
     }
 
     fn initial(&mut self, value: &ast::InitialValue) {
-        let checked = self.expr(&value.value, Type::Scalar, Place::constant("an initial value"));
+        let checked = self.expr(
+            &value.value,
+            Type::Scalar,
+            Place::constant("an initial value"),
+        );
         let ident = &value.name;
         let Some(entry) = self.scope.get(&ident.name).copied() else {
-            self.diagnostics.push(self.scope.not_found(ident, Some(NameKind::Coordinate)));
+            self.diagnostics
+                .push(self.scope.not_found(ident, Some(NameKind::Coordinate)));
             return;
         };
         let coordinate = match entry.target {
@@ -627,7 +849,10 @@ impl Checker {
                 };
                 self.diagnostics.push(
                     Diagnostic::new(
-                        DiagnosticKind::InitialNotCoordinate { name: ident.name.clone(), kind: entry.kind },
+                        DiagnosticKind::InitialNotCoordinate {
+                            name: ident.name.clone(),
+                            kind: entry.kind,
+                        },
                         ident.span,
                     )
                     .with_help(help),
@@ -635,7 +860,12 @@ impl Checker {
                 return;
             }
         };
-        if self.model.initial.iter().any(|i| i.coordinate == coordinate && i.rate == value.rate) {
+        if self
+            .model
+            .initial
+            .iter()
+            .any(|i| i.coordinate == coordinate && i.rate == value.rate)
+        {
             self.diagnostics.push(
                 Diagnostic::new(
                     DiagnosticKind::DuplicateInitial {
@@ -649,7 +879,11 @@ impl Checker {
             return;
         }
         if let Some(checked) = checked {
-            self.model.initial.push(InitialValue { coordinate, rate: value.rate, value: checked });
+            self.model.initial.push(InitialValue {
+                coordinate,
+                rate: value.rate,
+                value: checked,
+            });
         }
     }
 
@@ -663,14 +897,22 @@ impl Checker {
             );
             return;
         }
-        let mut simulation = Simulation { span, ..Simulation::default() };
+        let mut simulation = Simulation {
+            span,
+            ..Simulation::default()
+        };
         let mut seen: Vec<&str> = Vec::new();
         for setting in settings {
             let key = setting.key.name.as_str();
             if seen.contains(&key) {
                 self.diagnostics.push(
-                    Diagnostic::new(DiagnosticKind::DuplicateClause { clause: key.to_string() }, setting.key.span)
-                        .with_help("Give each setting once."),
+                    Diagnostic::new(
+                        DiagnosticKind::DuplicateClause {
+                            clause: key.to_string(),
+                        },
+                        setting.key.span,
+                    )
+                    .with_help("Give each setting once."),
                 );
                 continue;
             }
@@ -679,23 +921,36 @@ impl Checker {
                 match &setting.value.kind {
                     ast::ExprKind::Name(method) => simulation.method = Some(name(method)),
                     _ => self.diagnostics.push(
-                        Diagnostic::new(DiagnosticKind::InvalidSimulation { reason: "the method must be a name" }, setting.value.span)
-                            .with_help("Write `method rk45`, `method symplectic` or `method implicit`."),
+                        Diagnostic::new(
+                            DiagnosticKind::InvalidSimulation {
+                                reason: "the method must be a name",
+                            },
+                            setting.value.span,
+                        )
+                        .with_help(
+                            "Write `method rk45`, `method symplectic` or `method implicit`.",
+                        ),
                     ),
                 }
                 continue;
             }
-            let Some(value) = self.expr(&setting.value, Type::Scalar, Place::constant("a simulation setting")) else {
+            let Some(value) = self.expr(
+                &setting.value,
+                Type::Scalar,
+                Place::constant("a simulation setting"),
+            ) else {
                 continue;
             };
-            let literal = match value.kind {
-                ExprKind::Number { value, .. } => Some(value),
-                _ => None,
-            };
+            let literal = self.model.evaluate_constant(&value);
             if matches!(key, "step" | "rtol" | "atol") && literal.is_some_and(|v| v <= 0.0) {
                 self.diagnostics.push(
-                    Diagnostic::new(DiagnosticKind::InvalidSimulation { reason: "steps and tolerances must be positive" }, value.span)
-                        .with_help("Use a positive number, e.g. `rtol 1e-8`."),
+                    Diagnostic::new(
+                        DiagnosticKind::InvalidSimulation {
+                            reason: "steps and tolerances must be positive",
+                        },
+                        value.span,
+                    )
+                    .with_help("Use a positive number, e.g. `rtol 1e-8`."),
                 );
                 continue;
             }
@@ -708,16 +963,23 @@ impl Checker {
             };
             *slot = Some(value);
         }
-        let literal = |e: &Option<Expr>| match e.as_ref().map(|e| &e.kind) {
-            Some(ExprKind::Number { value, .. }) => Some(*value),
-            _ => None,
+        let literal = |e: &Option<Expr>| e.as_ref().and_then(|e| self.model.evaluate_constant(e));
+        let from = if simulation.from.is_some() {
+            literal(&simulation.from)
+        } else {
+            Some(0.0)
         };
-        if let (Some(from), Some(to)) = (literal(&simulation.from).or(Some(0.0)), literal(&simulation.to)) {
+        if let (Some(from), Some(to)) = (from, literal(&simulation.to)) {
             if to <= from {
                 let span = simulation.to.as_ref().map_or(span, |e| e.span);
                 self.diagnostics.push(
-                    Diagnostic::new(DiagnosticKind::InvalidSimulation { reason: "the end time must be after the start time" }, span)
-                        .with_help("Write e.g. `simulate from 0 to 10`."),
+                    Diagnostic::new(
+                        DiagnosticKind::InvalidSimulation {
+                            reason: "the end time must be after the start time",
+                        },
+                        span,
+                    )
+                    .with_help("Write e.g. `simulate from 0 to 10`."),
                 );
             }
         }
@@ -735,7 +997,11 @@ impl Checker {
         }
         let constraints = self.model.constraints.len();
         if free > 0 && constraints > free {
-            let span = self.model.constraints.get(free).map_or(Span::new(self.end, self.end), |c| c.span);
+            let span = self
+                .model
+                .constraints
+                .get(free)
+                .map_or(Span::new(self.end, self.end), |c| c.span);
             self.diagnostics.push(
                 Diagnostic::new(DiagnosticKind::TooManyConstraints { constraints, coordinates: free }, span)
                     .with_label("one constraint too many from here on")

@@ -6,7 +6,9 @@ use std::collections::HashMap;
 
 use crate::ast::{Ast, Ident, StatementKind};
 use crate::diagnostic::{suggest, Diagnostic, DiagnosticKind, NameKind, Type};
-use crate::model::{BodyId, ConstantId, ConstraintId, CoordinateId, FrameId, InputId, ParameterId, PointId};
+use crate::model::{
+    BodyId, ConstantId, ConstraintId, CoordinateId, FrameId, InputId, ParameterId, PointId,
+};
 use crate::span::Span;
 
 /// How much a quantity may vary; ordered from least to most.
@@ -57,23 +59,38 @@ impl Scope {
     pub(crate) fn new(ast: &Ast) -> Scope {
         let mut everything = HashMap::new();
         let mut add = |ident: &Ident, kind: NameKind| {
-            everything.entry(ident.name.clone()).or_insert((kind, ident.span));
+            everything
+                .entry(ident.name.clone())
+                .or_insert((kind, ident.span));
         };
         for statement in &ast.statements {
             match &statement.kind {
-                StatementKind::Coordinates(names) => names.iter().for_each(|n| add(n, NameKind::Coordinate)),
-                StatementKind::Parameters(b) => b.iter().for_each(|b| add(&b.name, NameKind::Parameter)),
+                StatementKind::Coordinates(names) => {
+                    names.iter().for_each(|n| add(n, NameKind::Coordinate))
+                }
+                StatementKind::Parameters(b) => {
+                    b.iter().for_each(|b| add(&b.name, NameKind::Parameter))
+                }
                 StatementKind::Inputs(b) => b.iter().for_each(|b| add(&b.name, NameKind::Input)),
-                StatementKind::Constants(b) => b.iter().for_each(|b| add(&b.name, NameKind::Constant)),
-                StatementKind::Driven(b) => b.iter().for_each(|b| add(&b.name, NameKind::DrivenCoordinate)),
+                StatementKind::Constants(b) => {
+                    b.iter().for_each(|b| add(&b.name, NameKind::Constant))
+                }
+                StatementKind::Driven(b) => b
+                    .iter()
+                    .for_each(|b| add(&b.name, NameKind::DrivenCoordinate)),
                 StatementKind::Frame { name, .. } => add(name, NameKind::Frame),
                 StatementKind::Point { name, .. } => add(name, NameKind::Point),
                 StatementKind::Body { name, .. } => add(name, NameKind::Body),
-                StatementKind::Constraint { name: Some(name), .. } => add(name, NameKind::Constraint),
+                StatementKind::Constraint {
+                    name: Some(name), ..
+                } => add(name, NameKind::Constraint),
                 _ => {}
             }
         }
-        Scope { entries: HashMap::new(), everything }
+        Scope {
+            entries: HashMap::new(),
+            everything,
+        }
     }
 
     /// Declare `ident`; on a clash, report it and return false (the first declaration stays).
@@ -90,11 +107,20 @@ impl Scope {
             let help = match name {
                 "t" => "`t` is time. Choose another name.".to_string(),
                 "pi" => "`pi` is π. Choose another name.".to_string(),
-                "origin" => "`origin` is the fixed origin of the inertial frame. Choose another name.".to_string(),
+                "origin" => {
+                    "`origin` is the fixed origin of the inertial frame. Choose another name."
+                        .to_string()
+                }
                 _ => format!("`{name}` is a built-in function. Choose another name."),
             };
             diagnostics.push(
-                Diagnostic::new(DiagnosticKind::ReservedName { name: name.to_string() }, ident.span).with_help(help),
+                Diagnostic::new(
+                    DiagnosticKind::ReservedName {
+                        name: name.to_string(),
+                    },
+                    ident.span,
+                )
+                .with_help(help),
             );
             return false;
         }
@@ -102,16 +128,32 @@ impl Scope {
             let kind_first = first.kind;
             diagnostics.push(
                 Diagnostic::new(
-                    DiagnosticKind::DuplicateName { name: name.to_string(), first: first.span },
+                    DiagnosticKind::DuplicateName {
+                        name: name.to_string(),
+                        first: first.span,
+                    },
                     ident.span,
                 )
                 .with_label("defined again here")
-                .with_related(first.span, format!("first defined here as {}", kind_first.with_article()))
-                .with_help(format!("Rename one of the two, or remove the second declaration of `{name}`.")),
+                .with_related(
+                    first.span,
+                    format!("first defined here as {}", kind_first.with_article()),
+                )
+                .with_help(format!(
+                    "Rename one of the two, or remove the second declaration of `{name}`."
+                )),
             );
             return false;
         }
-        self.entries.insert(ident.name.clone(), Entry { kind, target, span: ident.span, level });
+        self.entries.insert(
+            ident.name.clone(),
+            Entry {
+                kind,
+                target,
+                span: ident.span,
+                level,
+            },
+        );
         true
     }
 
@@ -125,16 +167,28 @@ impl Scope {
         if let Some(&(kind, definition)) = self.everything.get(name) {
             if definition.start > ident.span.start {
                 return Diagnostic::new(
-                    DiagnosticKind::UsedBeforeDefinition { name: name.to_string(), definition },
+                    DiagnosticKind::UsedBeforeDefinition {
+                        name: name.to_string(),
+                        definition,
+                    },
                     ident.span,
                 )
-                .with_related(definition, format!("`{name}` is defined here, as {}", kind.with_article()))
-                .with_help(format!("Move the declaration of `{name}` above its first use."));
+                .with_related(
+                    definition,
+                    format!("`{name}` is defined here, as {}", kind.with_article()),
+                )
+                .with_help(format!(
+                    "Move the declaration of `{name}` above its first use."
+                ));
             }
         }
         let kind = match wanted {
-            Some(NameKind::Point) => DiagnosticKind::UndefinedPoint { name: name.to_string() },
-            _ => DiagnosticKind::UnknownName { name: name.to_string() },
+            Some(NameKind::Point) => DiagnosticKind::UndefinedPoint {
+                name: name.to_string(),
+            },
+            _ => DiagnosticKind::UnknownName {
+                name: name.to_string(),
+            },
         };
         let diagnostic = Diagnostic::new(kind, ident.span);
         let candidates = self
@@ -147,10 +201,16 @@ impl Scope {
             Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
             None => diagnostic.with_help(match wanted {
                 Some(NameKind::Point) => format!("Define it first: `point {name} = …`."),
-                Some(NameKind::Frame) => format!("Define it first: `frame {name} = N rotated … about z`."),
-                Some(NameKind::Body) => format!("Define it first: `body {name} mass … at … frame … inertia …`."),
+                Some(NameKind::Frame) => {
+                    format!("Define it first: `frame {name} = N rotated … about z`.")
+                }
+                Some(NameKind::Body) => {
+                    format!("Define it first: `body {name} mass … at … frame … inertia …`.")
+                }
                 Some(NameKind::Coordinate) => format!("Declare it first: `coordinates {name}`."),
-                _ => format!("Declare `{name}` first, e.g. `parameters {name} = 1` or `coordinates {name}`."),
+                _ => format!(
+                    "Declare `{name}` first, e.g. `parameters {name} = 1` or `coordinates {name}`."
+                ),
             }),
         }
     }
@@ -178,14 +238,23 @@ impl Scope {
             Some(entry) if entry.kind == kind => Some(*entry),
             Some(entry) => {
                 let diagnostic = Diagnostic::new(
-                    DiagnosticKind::WrongKind { name: ident.name.clone(), expected: kind, found: entry.kind },
+                    DiagnosticKind::WrongKind {
+                        name: ident.name.clone(),
+                        expected: kind,
+                        found: entry.kind,
+                    },
                     ident.span,
                 )
                 .with_related(entry.span, format!("`{}` is defined here", ident.name));
-                let others = self.entries.iter().filter(|(_, e)| e.kind == kind).map(|(n, _)| n.as_str());
+                let others = self
+                    .entries
+                    .iter()
+                    .filter(|(_, e)| e.kind == kind)
+                    .map(|(n, _)| n.as_str());
                 let diagnostic = match suggest(&ident.name, others) {
                     Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
-                    None => diagnostic.with_help(format!("Use the name of {} here.", kind.with_article())),
+                    None => diagnostic
+                        .with_help(format!("Use the name of {} here.", kind.with_article())),
                 };
                 diagnostics.push(diagnostic);
                 None
