@@ -355,6 +355,21 @@ pub enum DiagnosticKind {
         first: Span,
     },
 
+    // --- warnings ---------------------------------------------------------------------------
+    /// A free coordinate that no position, frame, constraint or energy depends on: its
+    /// equation of motion would be empty (a singular mass matrix).
+    #[error("coordinate `{name}` is never used")]
+    UnusedCoordinate {
+        /// The coordinate.
+        name: String,
+    },
+    /// A parameter that no expression uses.
+    #[error("parameter `{name}` is never used")]
+    UnusedParameter {
+        /// The parameter.
+        name: String,
+    },
+
     // --- values (from `Model::require_values`) ----------------------------------------------
     /// A parameter or input without a numeric value, when numbers are needed.
     #[error("{} `{name}` has no value", if *kind == NameKind::Input { "input" } else { "parameter" })]
@@ -410,6 +425,8 @@ impl DiagnosticKind {
             ReactionNotConstraint { .. } => "E307",
             InvalidSimulation { .. } => "E308",
             DuplicateSimulate { .. } => "E309",
+            UnusedCoordinate { .. } => "W001",
+            UnusedParameter { .. } => "W002",
             MissingValue { .. } => "E401",
             MissingEndTime => "E402",
         }
@@ -453,6 +470,15 @@ impl Diagnostic {
             label: None,
             help: None,
             labels: Vec::new(),
+        }
+    }
+
+    /// A warning of `kind` at `span`.
+    #[must_use]
+    pub fn warning(kind: DiagnosticKind, span: Span) -> Diagnostic {
+        Diagnostic {
+            severity: Severity::Warning,
+            ..Diagnostic::new(kind, span)
         }
     }
 

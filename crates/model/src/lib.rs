@@ -42,7 +42,7 @@ pub use model::{
     Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId, ConstraintKind,
     Coordinate, CoordinateId, Expr, ExprKind, Frame, FrameId, Function, Inertia, InitialValue,
     Input, InputId, Load, LoadItem, Model, Name, Output, Parameter, ParameterId, Particle, Point,
-    PointId, ReactionTarget, Rotation, Simulation,
+    PointId, Quantity, ReactionTarget, Rotation, Simulation,
 };
 pub use parser::{parse, MAX_DEPTH};
 pub use render::{render, render_short, RenderOptions};

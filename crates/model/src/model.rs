@@ -566,7 +566,27 @@ pub struct Output {
     /// Its label: the given name, or the expression's text.
     pub label: String,
     /// The quantity.
-    pub value: Expr,
+    pub quantity: Quantity,
+    /// Where it is written.
+    pub span: Span,
+}
+
+/// What an output records.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Quantity {
+    /// A scalar or vector expression of the state and time.
+    Expr(Expr),
+    /// The total mechanical energy `K + V` (the Jacobi integral `h` when the system is
+    /// rheonomic); written `energy`.
+    Energy,
+    /// The kinetic energy `K`; written `kinetic_energy`.
+    KineticEnergy,
+    /// The potential energy `V`; written `potential_energy`.
+    PotentialEnergy,
+    /// A constraint reaction (a multiplier), or the force driving a driven coordinate;
+    /// written as the constraint's (or driven coordinate's) name.
+    Reaction(ReactionTarget),
 }
 
 /// A checked model. See the module doc for the ordering invariant.
@@ -586,6 +606,7 @@ pub struct Model {
     pub(crate) initial: Vec<InitialValue>,
     pub(crate) simulation: Option<Simulation>,
     pub(crate) outputs: Vec<Output>,
+    pub(crate) warnings: Vec<crate::diagnostic::Diagnostic>,
 }
 
 impl Model {
@@ -671,6 +692,13 @@ impl Model {
     #[must_use]
     pub fn outputs(&self) -> &[Output] {
         &self.outputs
+    }
+
+    /// Warnings found while checking (an unused coordinate or parameter, …): the model is
+    /// valid, but something is probably not what was meant.
+    #[must_use]
+    pub fn warnings(&self) -> &[crate::diagnostic::Diagnostic] {
+        &self.warnings
     }
 
     /// The inertial frame, if any frame is declared.

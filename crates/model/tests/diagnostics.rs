@@ -512,3 +512,46 @@ fn rendering_shows_file_line_column_underline_and_help() {
         "pendulum.lag:3:11: error[E101]: unknown name `thta` (help: Did you mean `theta`?)\n"
     );
 }
+
+// --- warnings ---------------------------------------------------------------------------
+
+#[test]
+fn w001_w002_unused_coordinate_and_parameter() {
+    let source =
+        "coordinates x, q\nparameters m = 1, k = 2\nframe N\npoint P = x*N.x\nparticle P mass m\n";
+    let model = model::load(source).expect("warnings do not make a model invalid");
+    let warnings = model.warnings();
+    assert_eq!(warnings.len(), 2);
+    assert_eq!(warnings[0].kind.code(), "W001");
+    assert_eq!(warnings[0].message(), "coordinate `q` is never used");
+    assert_eq!(
+        (
+            warnings[0].line_col(source).line,
+            warnings[0].line_col(source).column
+        ),
+        (1, 16)
+    );
+    assert!(!warnings[0].is_error());
+    assert_eq!(warnings[1].message(), "parameter `k` is never used");
+    assert_eq!(
+        (
+            warnings[1].line_col(source).line,
+            warnings[1].line_col(source).column
+        ),
+        (2, 19)
+    );
+}
+
+#[test]
+fn outputs_name_energies_and_reactions() {
+    let source =
+        "coordinates x, y\nparameters l = 1\nframe N\npoint P = x*N.x + y*N.y\nparticle P mass 1\n\
+                  constraint rod: x^2 + y^2 = l^2\noutput energy, rod, speed = norm(P), x'\n";
+    let model = model::load(source).expect("valid");
+    let quantities: Vec<&model::Quantity> = model.outputs().iter().map(|o| &o.quantity).collect();
+    assert!(matches!(quantities[0], model::Quantity::Energy));
+    assert!(matches!(quantities[1], model::Quantity::Reaction(_)));
+    assert!(matches!(quantities[2], model::Quantity::Expr(_)));
+    let labels: Vec<&str> = model.outputs().iter().map(|o| o.label.as_str()).collect();
+    assert_eq!(labels, ["energy", "rod", "speed", "x'"]);
+}

@@ -43,6 +43,12 @@ fn every_example_checks_cleanly() {
     );
     for path in &files {
         let model = load(path);
+        assert!(
+            model.warnings().is_empty(),
+            "{}: {:#?}",
+            path.display(),
+            model.warnings()
+        );
         // Every example can be run numerically as it stands.
         let missing = model.require_values();
         assert!(missing.is_empty(), "{}: {missing:?}", path.display());

@@ -12,6 +12,12 @@ fn pipeline(source: &str) {
     match model::load(source) {
         Ok(model) => {
             let _ = model.summary().to_string();
+            let _ = model::render(
+                model.warnings(),
+                "m.lag",
+                source,
+                model::RenderOptions::default(),
+            );
             let values = model.require_values();
             let _ = model::render(&values, "m.lag", source, model::RenderOptions::default());
         }

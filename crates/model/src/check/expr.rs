@@ -1,6 +1,8 @@
 //! Checking one expression: resolve its names, infer its type (scalar or vector), and enforce
 //! what the place it appears in allows ([`Place`]: rates or not, how much it may vary).
 
+use std::collections::HashSet;
+
 use crate::ast::{self, BinaryOp};
 use crate::diagnostic::{suggest, Diagnostic, DiagnosticKind, NameKind, Type};
 use crate::model::{Axis, Expr, ExprKind, Function, PointId};
@@ -62,6 +64,8 @@ fn allowed(level: Level) -> &'static str {
 
 pub(crate) struct ExprChecker<'a> {
     pub scope: &'a Scope,
+    /// Names used so far (for the unused-name warnings).
+    pub used: &'a mut HashSet<String>,
     pub diagnostics: &'a mut Vec<Diagnostic>,
     pub place: Place,
 }
@@ -115,6 +119,7 @@ impl ExprChecker<'_> {
                         return None;
                     }
                 };
+                self.used.insert(ident.name.clone());
                 let id = match entry.target {
                     Target::Coordinate(id) => id,
                     Target::Poisoned => return None,
@@ -242,6 +247,7 @@ impl ExprChecker<'_> {
                 (ExprKind::Point(PointId(0)), Type::Vector, Level::Constant)
             }
             name => {
+                self.used.insert(name.to_string());
                 let Some(entry) = self.scope.get(name).copied() else {
                     let diagnostic = if Function::from_name(name).is_some() {
                         Diagnostic::new(

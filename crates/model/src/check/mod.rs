@@ -45,11 +45,13 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
             initial: Vec::new(),
             simulation: None,
             outputs: Vec::new(),
+            warnings: Vec::new(),
         },
         inertial: None,
         end: ast.statements.last().map_or(0, |s| s.span.end),
         point_levels: vec![Level::Constant],
         frame_levels: Vec::new(),
+        used: std::collections::HashSet::new(),
     };
     for statement in &ast.statements {
         checker.statement(statement);
@@ -58,7 +60,9 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
     if checker.diagnostics.iter().any(Diagnostic::is_error) {
         Err(checker.diagnostics)
     } else {
-        Ok(checker.model)
+        let mut model = checker.model;
+        model.warnings = checker.diagnostics;
+        Ok(model)
     }
 }
 
@@ -73,6 +77,8 @@ struct Checker {
     /// however long the chain is.
     point_levels: Vec<Level>,
     frame_levels: Vec<Level>,
+    /// Every name used in an expression (or as a gear's coordinate).
+    used: std::collections::HashSet<String>,
 }
 
 fn id(len: usize) -> u32 {
@@ -91,6 +97,7 @@ impl Checker {
     fn expr(&mut self, expr: &ast::Expr, ty: Type, place: Place) -> Option<Expr> {
         ExprChecker {
             scope: &self.scope,
+            used: &mut self.used,
             diagnostics: &mut self.diagnostics,
             place,
         }
@@ -100,6 +107,7 @@ impl Checker {
     fn any_expr(&mut self, expr: &ast::Expr, place: Place) -> Option<Expr> {
         ExprChecker {
             scope: &self.scope,
+            used: &mut self.used,
             diagnostics: &mut self.diagnostics,
             place,
         }
@@ -410,20 +418,88 @@ impl Checker {
             StatementKind::Simulate(settings) => self.simulate(settings, statement.span),
             StatementKind::Output(items) => {
                 for item in items {
-                    if let Some(value) = self.any_expr(&item.value, Place::motion("an output")) {
-                        let label = item
-                            .name
-                            .as_ref()
-                            .map_or_else(|| item.value.to_string(), |n| n.name.clone());
-                        self.model.outputs.push(Output { label, value });
-                    }
+                    self.output(item);
                 }
             }
         }
     }
 
+    /// Warn about coordinates and parameters nothing uses. Only on an otherwise valid model:
+    /// after an error, a name may look unused because the line that used it was skipped.
+    fn unused(&mut self) {
+        for coordinate in &self.model.coordinates {
+            if coordinate.driven.is_none() && !self.used.contains(&coordinate.name.name) {
+                let name = coordinate.name.name.clone();
+                self.diagnostics.push(
+                    Diagnostic::warning(DiagnosticKind::UnusedCoordinate { name: name.clone() }, coordinate.name.span)
+                        .with_help(format!(
+                            "Use `{name}` in a point, a frame or a constraint, or remove it: a coordinate \
+                             that nothing depends on has no equation of motion."
+                        )),
+                );
+            }
+        }
+        for parameter in &self.model.parameters {
+            if !self.used.contains(&parameter.name.name) {
+                let name = parameter.name.name.clone();
+                self.diagnostics.push(
+                    Diagnostic::warning(
+                        DiagnosticKind::UnusedParameter { name: name.clone() },
+                        parameter.name.span,
+                    )
+                    .with_help(format!(
+                        "Remove `{name}`, or use it where it was meant to be."
+                    )),
+                );
+            }
+        }
+    }
+
+    fn output(&mut self, item: &ast::OutputItem) {
+        let label = item
+            .name
+            .as_ref()
+            .map_or_else(|| item.value.to_string(), |n| n.name.clone());
+        // Energies and reactions are written as bare names; a declared name of the same
+        // spelling wins, so these words are not reserved.
+        let special = match &item.value.kind {
+            ast::ExprKind::Name(ident) => {
+                match (ident.name.as_str(), self.scope.get(&ident.name)) {
+                    ("energy", None) => Some(Quantity::Energy),
+                    ("kinetic_energy", None) => Some(Quantity::KineticEnergy),
+                    ("potential_energy", None) => Some(Quantity::PotentialEnergy),
+                    (_, Some(entry)) => match entry.target {
+                        Target::Constraint(id) => {
+                            Some(Quantity::Reaction(ReactionTarget::Constraint(id)))
+                        }
+                        _ => None,
+                    },
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        let quantity = match special {
+            Some(quantity) => quantity,
+            None => match self.any_expr(&item.value, Place::motion("an output")) {
+                Some(value) => Quantity::Expr(value),
+                None => return,
+            },
+        };
+        self.model.outputs.push(Output {
+            label,
+            quantity,
+            span: item.value.span,
+        });
+    }
+
     fn load(&mut self, load: Load, span: Span) {
         self.model.loads.push(LoadItem { load, span });
+    }
+
+    fn gear_coordinate(&mut self, ident: &Ident) -> Option<CoordinateId> {
+        self.used.insert(ident.name.clone());
+        self.free_coordinate(ident)
     }
 
     fn free_coordinate(&mut self, ident: &Ident) -> Option<CoordinateId> {
@@ -764,8 +840,8 @@ impl Checker {
                 driven,
                 ratio,
             } => {
-                let driver = self.free_coordinate(driver);
-                let driven = self.free_coordinate(driven);
+                let driver = self.gear_coordinate(driver);
+                let driven = self.gear_coordinate(driven);
                 let ratio = self.expr(ratio, Type::Scalar, Place::configuration("a gear ratio"));
                 match (driver, driven, ratio) {
                     (Some(driver), Some(driven), Some(ratio)) => Some(ConstraintKind::Gear {
@@ -987,6 +1063,9 @@ impl Checker {
     }
 
     fn finish(&mut self) {
+        if !self.diagnostics.iter().any(Diagnostic::is_error) {
+            self.unused();
+        }
         let free = self.model.free_coordinates().count();
         if free == 0 && !self.diagnostics.iter().any(Diagnostic::is_error) {
             let span = Span::new(0, 0);
