@@ -8,19 +8,14 @@
 //! vector. Every mistake becomes a [`Diagnostic`] (what, where, how to mend it), rendered with
 //! [`render`]; several are reported in one run, and no input makes this crate panic.
 //!
-//! ```
-//! let source = "coordinates theta\nparameters m = 1, l = 0.5, g = 9.81\nframe N\n\
-//!               point P = l*sin(theta)*N.x - l*cos(theta)*N.y\n\
-//!               particle P mass m\ngravity -g*N.y\n";
-//! let model = model::load(source).expect("a valid model");
-//! assert_eq!(model.summary().degrees_of_freedom, 1);
+//! The pipeline, as `lagrange check` runs it:
 //!
-//! let broken = "coordinates theta\nframe N\npoint P = thta*N.x\n";
-//! let errors = model::load(broken).unwrap_err();
-//! let text = model::render(&errors.0, "pendulum.lag", broken, model::RenderOptions::default());
-//! assert!(text.contains("unknown name `thta`"));
-//! assert!(text.contains("Did you mean `theta`?"));
-//! ```
+#![doc = concat!("```rust\n", include_str!("../tests/readme.rs"), "\n```")]
+//!
+//! The parts: [`parse`] (text → [`ast::Ast`] and syntax diagnostics), [`check`] (AST →
+//! [`Model`] or diagnostics), [`load`] (both), [`Model::require_values`] (what numeric work
+//! still needs), [`Model::summary`] (what `lagrange check` prints), [`render`] and
+//! [`render_short`] (diagnostics → text).
 #![warn(missing_docs)]
 
 pub mod ast;
