@@ -34,10 +34,10 @@ pub use check::check;
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Label, NameKind, Severity, Type};
 pub use display::DisplayExpr;
 pub use model::{
-    Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId, ConstraintKind,
-    Coordinate, CoordinateId, Expr, ExprKind, Frame, FrameId, Function, Inertia, InitialValue,
-    Input, InputId, Load, LoadItem, Model, Name, Output, Parameter, ParameterId, Particle, Point,
-    PointId, Quantity, ReactionTarget, Rotation, Simulation,
+    decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
+    ConstraintKind, Coordinate, CoordinateId, Decimal, Expr, ExprKind, Frame, FrameId, Function,
+    Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output, Parameter,
+    ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Rotation, Simulation,
 };
 pub use parser::{parse, MAX_DEPTH};
 pub use render::{render, render_short, RenderOptions};

@@ -768,3 +768,60 @@ impl Model {
         &self.constraints[id.index()]
     }
 }
+
+/// A number literal as an exact decimal: `mantissa × 10^exponent`. `0.25` is `25 × 10⁻²`,
+/// `1.5e3` is `15 × 10²`. Made by [`decimal`]; the symbolic core turns it into a rational.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Decimal {
+    /// The digits, without the decimal point.
+    pub mantissa: u128,
+    /// The power of ten.
+    pub exponent: i32,
+}
+
+/// The exact value of a number literal of the language (the `text` of
+/// [`ExprKind::Number`]), or `None` if it is not one or does not fit (more than 38 digits, or
+/// an exponent beyond ±2³⁰); fall back to the `f64` value then.
+#[must_use]
+pub fn decimal(text: &str) -> Option<Decimal> {
+    let (digits, exponent) = match text.find(['e', 'E']) {
+        Some(at) => (text.get(..at)?, text.get(at + 1..)?.parse::<i32>().ok()?),
+        None => (text, 0),
+    };
+    if exponent.unsigned_abs() > 1 << 30 {
+        return None;
+    }
+    let (integer, fraction) = digits.split_once('.').unwrap_or((digits, ""));
+    if integer.is_empty() && fraction.is_empty() {
+        return None;
+    }
+    let mut mantissa: u128 = 0;
+    for c in integer.chars().chain(fraction.chars()) {
+        let digit = c.to_digit(10)?;
+        mantissa = mantissa.checked_mul(10)?.checked_add(u128::from(digit))?;
+    }
+    let fraction_digits = i32::try_from(fraction.len()).ok()?;
+    Some(Decimal {
+        mantissa,
+        exponent: exponent - fraction_digits,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimals_are_exact() {
+        let d = |mantissa, exponent| Some(Decimal { mantissa, exponent });
+        assert_eq!(decimal("0.25"), d(25, -2));
+        assert_eq!(decimal("1.5e3"), d(15, 2));
+        assert_eq!(decimal(".5"), d(5, -1));
+        assert_eq!(decimal("2."), d(2, 0));
+        assert_eq!(decimal("7"), d(7, 0));
+        assert_eq!(decimal("1E-8"), d(1, -8));
+        assert_eq!(decimal("."), None);
+        assert_eq!(decimal("x"), None);
+        assert_eq!(decimal(&"9".repeat(50)), None);
+    }
+}

@@ -492,14 +492,30 @@ impl<'s> Parser<'s> {
             }
         } else {
             let lhs = self.expr()?;
-            if self.eat(Token::Equals).is_none() {
-                return Err(
+            if self.at(Token::Newline) {
+                // Report, then go on as if `= 0` had been written: the constraint's name is
+                // then declared, and its uses (in `reactions`, say) raise no further errors.
+                self.diagnostics.push(
                     Diagnostic::new(DiagnosticKind::NotAnEquation, lhs.span).with_help(format!(
                         "Write the constraint as an equation, e.g. `{} = 0`.",
                         self.text(lhs.span)
                     )),
                 );
+                let end = Span::new(lhs.span.end, lhs.span.end);
+                let zero = Number {
+                    text: "0".to_string(),
+                    value: 0.0,
+                };
+                let rhs = Expr {
+                    kind: ExprKind::Number(zero),
+                    span: end,
+                };
+                return Ok(StatementKind::Constraint {
+                    name,
+                    spec: ConstraintSpec::Equation { lhs, rhs },
+                });
             }
+            self.expect(Token::Equals, "`=`")?;
             ConstraintSpec::Equation {
                 lhs,
                 rhs: self.expr()?,

@@ -32,17 +32,26 @@ fn reference_snippets_parse() {
     for block in &blocks {
         // Skip program output, rendered diagnostics and the grammar.
         let first = block.trim_start();
-        if first.starts_with("degrees of freedom") || first.starts_with('[') || first.starts_with("file ") {
+        if first.starts_with("degrees of freedom")
+            || first.starts_with('[')
+            || first.starts_with("file ")
+        {
             continue;
         }
         snippets += 1;
         let (_, diagnostics) = model::parse(block);
-        assert!(diagnostics.is_empty(), "snippet does not parse:\n{block}\n{diagnostics:#?}");
+        assert!(
+            diagnostics.is_empty(),
+            "snippet does not parse:\n{block}\n{diagnostics:#?}"
+        );
     }
     assert!(snippets > 20);
     // The first block is a complete model.
     let first = blocks.first().expect("a first block");
     if let Err(errors) = model::load(first) {
-        panic!("{}", model::render(&errors.0, "docs", first, model::RenderOptions::default()));
+        panic!(
+            "{}",
+            model::render(&errors.0, "docs", first, model::RenderOptions::default())
+        );
     }
 }

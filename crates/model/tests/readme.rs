@@ -15,7 +15,12 @@ gravity -g*N.y
 
     let broken = "coordinates theta\nframe N\npoint P = thta*N.x\n";
     let errors = model::load(broken).unwrap_err();
-    let text = model::render(&errors.0, "pendulum.lag", broken, model::RenderOptions::default());
+    let text = model::render(
+        &errors.0,
+        "pendulum.lag",
+        broken,
+        model::RenderOptions::default(),
+    );
     assert!(text.contains("unknown name `thta`"));
     assert!(text.contains("Did you mean `theta`?"));
     assert!(text.contains("pendulum.lag:3:11"));

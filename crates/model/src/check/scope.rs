@@ -208,6 +208,9 @@ impl Scope {
                     format!("Define it first: `body {name} mass … at … frame … inertia …`.")
                 }
                 Some(NameKind::Coordinate) => format!("Declare it first: `coordinates {name}`."),
+                Some(NameKind::Constraint) => {
+                    format!("Name a constraint `{name}`: `constraint {name}: …`.")
+                }
                 _ => format!(
                     "Declare `{name}` first, e.g. `parameters {name} = 1` or `coordinates {name}`."
                 ),
