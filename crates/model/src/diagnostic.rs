@@ -354,6 +354,21 @@ pub enum DiagnosticKind {
         /// The first one.
         first: Span,
     },
+    /// A constraint that involves no free coordinate (`l = 1`, `t = 0`).
+    #[error("this constraint does not involve any coordinate")]
+    ConstraintWithoutCoordinates,
+    /// A mass that evaluates to zero or less.
+    #[error("a mass must be positive, but this one is {value}")]
+    NonPositiveMass {
+        /// Its value.
+        value: f64,
+    },
+    /// A moment of inertia (a diagonal component) that evaluates to less than zero.
+    #[error("a moment of inertia cannot be negative, but this one is {value}")]
+    NegativeMoment {
+        /// Its value.
+        value: f64,
+    },
 
     // --- warnings ---------------------------------------------------------------------------
     /// A free coordinate that no position, frame, constraint or energy depends on: its
@@ -425,6 +440,9 @@ impl DiagnosticKind {
             ReactionNotConstraint { .. } => "E307",
             InvalidSimulation { .. } => "E308",
             DuplicateSimulate { .. } => "E309",
+            ConstraintWithoutCoordinates => "E310",
+            NonPositiveMass { .. } => "E311",
+            NegativeMoment { .. } => "E312",
             UnusedCoordinate { .. } => "W001",
             UnusedParameter { .. } => "W002",
             MissingValue { .. } => "E401",

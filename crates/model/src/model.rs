@@ -317,7 +317,9 @@ pub struct Frame {
     pub name: Name,
     /// `None` for the inertial frame; otherwise the parent frame and the rotations that take
     /// the parent to this frame, applied in order (each about an axis of the frame produced
-    /// by the previous rotation): `R = R_parent · R_1 · R_2 ⋯`.
+    /// by the previous rotation): `R = R_parent · R_1 · R_2 ⋯`, where the columns of `R` are
+    /// the frame's unit vectors in inertial axes. Rotations are right-handed: by θ about `z`,
+    /// `B.x = cos θ P.x + sin θ P.y`, `B.y = −sin θ P.x + cos θ P.y` (`P` the parent).
     pub rotation: Option<(FrameId, Vec<Rotation>)>,
 }
 

@@ -430,6 +430,50 @@ fn e309_duplicate_simulate() {
     expect(&source, "E309", "`simulate` is given twice", 4, 1);
 }
 
+#[test]
+fn e310_constraint_without_coordinates() {
+    let source = format!("{PRELUDE}parameters l = 1\nconstraint l = 2\n");
+    expect(
+        &source,
+        "E310",
+        "this constraint does not involve any coordinate",
+        4,
+        12,
+    );
+}
+
+#[test]
+fn e311_non_positive_mass() {
+    let source = format!("{PRELUDE}point P = x*N.x\nparticle P mass 0\n");
+    expect(
+        &source,
+        "E311",
+        "a mass must be positive, but this one is 0",
+        4,
+        17,
+    );
+    let source = format!("{PRELUDE}parameters m = 2\npoint P = x*N.x\nparticle P mass 1 - m\n");
+    expect(
+        &source,
+        "E311",
+        "a mass must be positive, but this one is -1",
+        5,
+        17,
+    );
+}
+
+#[test]
+fn e312_negative_moment() {
+    let source = format!("{PRELUDE}point G = x*N.x\nbody b mass 1 at G frame N inertia xx = 1, yy = -2, zz = 1, xy = -5\n");
+    expect(
+        &source,
+        "E312",
+        "a moment of inertia cannot be negative, but this one is -2",
+        4,
+        49,
+    );
+}
+
 // --- values -----------------------------------------------------------------------------
 
 fn require_values(source: &str) -> Vec<Diagnostic> {

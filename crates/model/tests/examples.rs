@@ -89,3 +89,37 @@ constraints: none
 "
     );
 }
+
+/// DESIGN.md's sketch of exercise 7.1 is the canonical example and must stay valid as
+/// written. The design documents live beside the repository (`../shared`), where CI has them;
+/// the sketch is also kept verbatim in `examples/seed/7.1-cart-pendulum.lag`, which the test
+/// above checks everywhere.
+#[test]
+fn design_sketch_stays_valid() {
+    let design = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/DESIGN.md");
+    let Ok(text) = std::fs::read_to_string(&design) else {
+        return;
+    };
+    let start = text
+        .find("```text\n# Cart on a spring")
+        .expect("the 7.1 sketch in DESIGN.md");
+    let body = &text[start + "```text\n".len()..];
+    let sketch = &body[..body.find("```").expect("end of the sketch")];
+    if let Err(errors) = model::load(sketch) {
+        panic!(
+            "{}",
+            model::render(
+                &errors.0,
+                "DESIGN.md",
+                sketch,
+                model::RenderOptions::default()
+            )
+        );
+    }
+    let example =
+        std::fs::read_to_string(examples_dir().join("seed/7.1-cart-pendulum.lag")).expect("7.1");
+    assert!(
+        example.contains(sketch),
+        "examples/seed/7.1-cart-pendulum.lag must contain the sketch verbatim"
+    );
+}

@@ -289,7 +289,7 @@ impl Checker {
             }
             StatementKind::Particle { point, mass } => {
                 let target = self.lookup(point, NameKind::Point);
-                let mass = self.expr(mass, Type::Scalar, Place::constant("a mass"));
+                let mass = self.mass(mass);
                 if let (Some(Target::Point(point)), Some(mass)) = (target, mass) {
                     self.model.particles.push(Particle {
                         point,
@@ -493,6 +493,36 @@ impl Checker {
         });
     }
 
+    /// Check a mass: a constant scalar, positive when it can be evaluated.
+    fn mass(&mut self, mass: &ast::Expr) -> Option<Expr> {
+        let mass = self.expr(mass, Type::Scalar, Place::constant("a mass"))?;
+        match self.model.evaluate_constant(&mass) {
+            Some(value) if value.is_nan() || value <= 0.0 => {
+                self.diagnostics.push(
+                    Diagnostic::new(DiagnosticKind::NonPositiveMass { value }, mass.span)
+                        .with_help("Give a positive mass; a massless point needs no `particle`."),
+                );
+                None
+            }
+            _ => Some(mass),
+        }
+    }
+
+    /// Check that a moment of inertia that can be evaluated is not negative.
+    fn moment(&mut self, moment: Option<Expr>) -> Option<Expr> {
+        let moment = moment?;
+        match self.model.evaluate_constant(&moment) {
+            Some(value) if value.is_nan() || value < 0.0 => {
+                self.diagnostics.push(
+                    Diagnostic::new(DiagnosticKind::NegativeMoment { value }, moment.span)
+                        .with_help("Moments of inertia are sums of m·r², never negative."),
+                );
+                None
+            }
+            _ => Some(moment),
+        }
+    }
+
     fn load(&mut self, load: Load, span: Span) {
         self.model.loads.push(LoadItem { load, span });
     }
@@ -625,7 +655,7 @@ impl Checker {
         };
         let mut ok = true;
         let mass = match &clauses.mass {
-            Some(mass) => self.expr(mass, Type::Scalar, Place::constant("a mass")),
+            Some(mass) => self.mass(mass),
             None => {
                 self.diagnostics.push(missing(
                     "mass",
@@ -701,7 +731,8 @@ impl Checker {
         match &clause.spec {
             ast::InertiaSpec::Principal(moments) => {
                 for (slot, moment) in components.iter_mut().zip(moments) {
-                    *slot = self.expr(moment, Type::Scalar, place);
+                    let checked = self.expr(moment, Type::Scalar, place);
+                    *slot = self.moment(checked);
                     ok &= slot.is_some();
                 }
             }
@@ -753,6 +784,7 @@ impl Checker {
                         );
                         ok = false;
                     }
+                    let value = if index < 3 { self.moment(value) } else { value };
                     ok &= value.is_some();
                     if let Some(slot) = components.get_mut(index) {
                         *slot = value;
@@ -803,6 +835,18 @@ impl Checker {
                 let lhs = self.expr(lhs, Type::Scalar, place);
                 let rhs = self.expr(rhs, Type::Scalar, place);
                 match (lhs, rhs) {
+                    (Some(lhs), Some(rhs))
+                        if self.level_of(&lhs).max(self.level_of(&rhs)) < Level::Configuration =>
+                    {
+                        self.diagnostics.push(
+                            Diagnostic::new(DiagnosticKind::ConstraintWithoutCoordinates, lhs.span.to(rhs.span))
+                                .with_help(
+                                    "A constraint restricts the motion, so it must involve a coordinate; \
+                                     a fixed relation among parameters belongs in `constants`.",
+                                ),
+                        );
+                        None
+                    }
                     (Some(lhs), Some(rhs)) => match (rate_degree(&lhs), rate_degree(&rhs)) {
                         (Some(0), Some(0)) => Some(ConstraintKind::Holonomic { lhs, rhs }),
                         (Some(a), Some(b)) if a <= 1 && b <= 1 => {
