@@ -35,9 +35,10 @@ pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Label, NameKind, S
 pub use display::DisplayExpr;
 pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
-    ConstraintKind, Coordinate, CoordinateId, Decimal, Expr, ExprKind, Frame, FrameId, Function,
-    Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output, Parameter,
-    ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Rotation, Simulation,
+    ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,
+    Function, Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output,
+    Parameter, ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Rotation,
+    Simulation,
 };
 pub use parser::{parse, MAX_DEPTH};
 pub use render::{render, render_short, RenderOptions};

@@ -2,10 +2,19 @@
 //!
 //! [`Model`] is what [`crate::check`] produces and what the `lower` step turns into `cas`
 //! expressions and a `mechanics::System`. Declarations of each kind are kept in file order in
-//! their own list and referred to by typed ids ([`CoordinateId`], [`PointId`], …). Invariant:
-//! an expression or declaration refers only to declarations that come *before* it in the file,
-//! so lowering each list in order (constants, frames, points, …) never meets an undefined id.
-//! Expressions keep their source [`Span`]s, so later stages can still point at the text.
+//! their own list and referred to by typed ids ([`CoordinateId`], [`PointId`], …).
+//!
+//! Invariant: an expression or declaration refers only to declarations that come *before* it
+//! in the file. [`Model::declarations`] lists them all in file order, so one pass over it,
+//! building each declaration's symbolic value from those already built, never meets an
+//! undefined id (lowering kind by kind would not do: a constant may use a fixed point, whose
+//! position uses a frame). Expressions keep their source [`Span`]s, so later stages can
+//! still point at the text.
+//!
+//! Expression semantics, for lowering: a point stands for its position vector from `origin`
+//! (`origin` is [`PointId`] 0, at the zero vector); `N.x` is the frame's unit vector, the
+//! first column of its rotation matrix in inertial axes; a rate `q'` is q̇; `t` is time; all
+//! vector arithmetic is the usual one (`*` is only scalar × vector, `/` only by a scalar).
 
 use crate::ast::BinaryOp;
 use crate::diagnostic::Type;
@@ -609,6 +618,29 @@ pub struct Model {
     pub(crate) simulation: Option<Simulation>,
     pub(crate) outputs: Vec<Output>,
     pub(crate) warnings: Vec<crate::diagnostic::Diagnostic>,
+    pub(crate) declarations: Vec<Declaration>,
+}
+
+/// A named declaration (or a constraint), for walking a model in file order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Declaration {
+    /// A coordinate, free or driven.
+    Coordinate(CoordinateId),
+    /// A parameter.
+    Parameter(ParameterId),
+    /// An input.
+    Input(InputId),
+    /// A named constant.
+    Constant(ConstantId),
+    /// A frame.
+    Frame(FrameId),
+    /// A point (other than `origin`).
+    Point(PointId),
+    /// A rigid body.
+    Body(BodyId),
+    /// A constraint, named or not.
+    Constraint(ConstraintId),
 }
 
 impl Model {
@@ -694,6 +726,16 @@ impl Model {
     #[must_use]
     pub fn outputs(&self) -> &[Output] {
         &self.outputs
+    }
+
+    /// Every coordinate, parameter, input, constant, frame, point, body and constraint, in
+    /// file order. Each refers only to declarations before it, so a single pass over this list
+    /// (building each one's symbolic value from the ones already built) lowers the model.
+    /// Particles and loads refer to declarations but are not referred to, so they can be
+    /// lowered after it, from their own lists.
+    #[must_use]
+    pub fn declarations(&self) -> &[Declaration] {
+        &self.declarations
     }
 
     /// Warnings found while checking (an unused coordinate or parameter, …): the model is

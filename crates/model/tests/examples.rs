@@ -123,3 +123,23 @@ fn design_sketch_stays_valid() {
         "examples/seed/7.1-cart-pendulum.lag must contain the sketch verbatim"
     );
 }
+
+#[test]
+fn declarations_come_in_file_order_and_refer_backwards() {
+    let model = load(&examples_dir().join("seed/7.2-rolling-cone.lag"));
+    let kinds: Vec<String> = model
+        .declarations()
+        .iter()
+        .map(|d| format!("{d:?}"))
+        .collect();
+    assert_eq!(
+        kinds.first().map(String::as_str),
+        Some("Coordinate(CoordinateId(0))")
+    );
+    // theta, phi, 7 parameters, 3 constants, 4 frames, 2 points, 1 body, 1 constraint.
+    assert_eq!(kinds.len(), 2 + 7 + 3 + 4 + 2 + 1 + 1);
+    assert!(matches!(
+        model.declarations().last(),
+        Some(model::Declaration::Constraint(_))
+    ));
+}

@@ -46,6 +46,7 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
             simulation: None,
             outputs: Vec::new(),
             warnings: Vec::new(),
+            declarations: Vec::new(),
         },
         inertial: None,
         end: ast.statements.last().map_or(0, |s| s.span.end),
@@ -121,8 +122,26 @@ impl Checker {
     }
 
     fn declare(&mut self, ident: &Ident, kind: NameKind, target: Target, level: Level) -> bool {
-        self.scope
-            .declare(ident, kind, target, level, &mut self.diagnostics)
+        let declared = self
+            .scope
+            .declare(ident, kind, target, level, &mut self.diagnostics);
+        if declared {
+            // The caller pushes the declaration's data right after a successful `declare`, so
+            // the id in `target` is the one it gets.
+            let declaration = match target {
+                Target::Coordinate(id) => Some(Declaration::Coordinate(id)),
+                Target::Parameter(id) => Some(Declaration::Parameter(id)),
+                Target::Input(id) => Some(Declaration::Input(id)),
+                Target::Constant(id, _) => Some(Declaration::Constant(id)),
+                Target::Frame(id) => Some(Declaration::Frame(id)),
+                Target::Point(id) => Some(Declaration::Point(id)),
+                Target::Body(id) => Some(Declaration::Body(id)),
+                Target::Constraint(id) => Some(Declaration::Constraint(id)),
+                Target::Poisoned => None,
+            };
+            self.model.declarations.extend(declaration);
+        }
+        declared
     }
 
     /// Declare a name whose definition failed, so that its uses are not reported again.
@@ -908,11 +927,18 @@ impl Checker {
                     });
                 }
             }
-            (Some(kind), None) => self.model.constraints.push(Constraint {
-                name: None,
-                kind,
-                span,
-            }),
+            (Some(kind), None) => {
+                let constraint_id = ConstraintId(id(self.model.constraints.len()));
+                self.model
+                    .declarations
+                    .push(Declaration::Constraint(constraint_id));
+                let constraint = Constraint {
+                    name: None,
+                    kind,
+                    span,
+                };
+                self.model.constraints.push(constraint);
+            }
             (None, Some(ident)) => self.poison(ident, NameKind::Constraint),
             (None, None) => {}
         }
