@@ -22,9 +22,10 @@ pub enum Token {
     /// A backslash, which continues a statement on the next line.
     #[token("\\")]
     Backslash,
-    /// A name: letters, digits and `_`, not starting with a digit. Keywords are contextual,
+    /// A name: letters, digits (also subscripts: `m₁`), marks and `_`, not starting with a
+    /// digit. Keywords are contextual,
     /// so they lex as names too.
-    #[regex(r"[\p{Alphabetic}_][\p{Alphabetic}\p{Nd}_]*")]
+    #[regex(r"[\p{Alphabetic}_][\p{Alphabetic}\p{N}\p{M}_]*")]
     Name,
     /// A number: `3`, `0.5`, `.5`, `2.`, `1e-8`, `6.02E23`.
     #[regex(r"([0-9]+(\.[0-9]*)?|\.[0-9]+)([eE][+-]?[0-9]+)?")]

@@ -936,4 +936,177 @@ mod tests {
             DiagnosticKind::TooDeep { .. }
         ));
     }
+
+    fn only(source: &str) -> StatementKind {
+        let mut ast = parse_ok(source);
+        assert_eq!(ast.statements.len(), 1);
+        ast.statements.remove(0).kind
+    }
+
+    #[test]
+    fn body_clauses_in_any_order_and_full_tensors() {
+        let StatementKind::Body { name, clauses } =
+            only("body rod inertia xx = a, yy = b, zz = c, yx = d about O frame B at G mass m")
+        else {
+            panic!()
+        };
+        assert_eq!(name.name, "rod");
+        assert!(clauses.mass.is_some() && clauses.centre.is_some() && clauses.frame.is_some());
+        let inertia = clauses.inertia.expect("inertia");
+        assert_eq!(inertia.about.map(|p| p.name), Some("O".to_string()));
+        let InertiaSpec::Components(components) = inertia.spec else {
+            panic!()
+        };
+        let keys: Vec<&str> = components.iter().map(|(k, _)| k.name.as_str()).collect();
+        assert_eq!(keys, ["xx", "yy", "zz", "yx"]);
+    }
+
+    #[test]
+    fn constraint_forms() {
+        assert!(matches!(
+            only("constraint roll: rolling disc at A"),
+            StatementKind::Constraint {
+                name: Some(_),
+                spec: ConstraintSpec::Rolling { .. }
+            }
+        ));
+        assert!(matches!(
+            only("constraint gear a to b ratio 2"),
+            StatementKind::Constraint {
+                name: None,
+                spec: ConstraintSpec::Gear { .. }
+            }
+        ));
+        // `rolling` and `gear` are keywords only when a name follows them.
+        assert!(matches!(
+            only("constraint rolling + gear = 1"),
+            StatementKind::Constraint {
+                name: None,
+                spec: ConstraintSpec::Equation { .. }
+            }
+        ));
+    }
+
+    #[test]
+    fn initial_rates_settings_and_outputs() {
+        let StatementKind::Initial(values) = only("initial x = 1, x' = -2") else {
+            panic!()
+        };
+        assert_eq!(
+            values.iter().map(|v| v.rate).collect::<Vec<_>>(),
+            [false, true]
+        );
+        let StatementKind::Simulate(settings) =
+            only("simulate from 0, to 10 rtol 1e-9 method rk45")
+        else {
+            panic!()
+        };
+        let keys: Vec<&str> = settings.iter().map(|s| s.key.name.as_str()).collect();
+        assert_eq!(keys, ["from", "to", "rtol", "method"]);
+        let StatementKind::Output(items) = only("output x, h = dot(P, N.y), energy") else {
+            panic!()
+        };
+        assert_eq!(items.len(), 3);
+        assert_eq!(items[1].name.as_ref().map(|n| n.name.as_str()), Some("h"));
+    }
+
+    #[test]
+    fn springs_dampers_and_frames() {
+        let StatementKind::Spring {
+            connection: Connection::Scalar(_),
+            rest: Some(_),
+            ..
+        } = only("spring k on theta2 - theta1 rest 0.1")
+        else {
+            panic!()
+        };
+        let StatementKind::Damper {
+            connection: Connection::Points { .. },
+            ..
+        } = only("damper c from A to B")
+        else {
+            panic!()
+        };
+        let StatementKind::Frame {
+            rotation: Some((parent, rotations)),
+            ..
+        } = only("frame E = N rotated psi about z then theta about x then phi about z")
+        else {
+            panic!()
+        };
+        assert_eq!(parent.name, "N");
+        let axes: Vec<&str> = rotations.iter().map(|r| r.axis.name.as_str()).collect();
+        assert_eq!(axes, ["z", "x", "z"]);
+    }
+
+    #[test]
+    fn unicode_names() {
+        let StatementKind::Coordinates(names) = only("coordinates θ, φ₁, ẋ") else {
+            panic!()
+        };
+        assert_eq!(
+            names.iter().map(|n| n.name.as_str()).collect::<Vec<_>>(),
+            ["θ", "φ₁", "ẋ"]
+        );
+    }
+
+    mod display_round_trip {
+        use super::*;
+        use proptest::prelude::*;
+
+        fn leaf() -> impl Strategy<Value = String> {
+            prop_oneof![
+                Just("x".to_string()),
+                Just("theta'".to_string()),
+                Just("N.y".to_string()),
+                Just("2".to_string()),
+                Just("0.5".to_string()),
+                Just("pi".to_string()),
+            ]
+        }
+
+        fn expression() -> impl Strategy<Value = String> {
+            leaf().prop_recursive(5, 40, 3, |inner| {
+                prop_oneof![
+                    (
+                        inner.clone(),
+                        prop::sample::select(vec!["+", "-", "*", "/", "^", "**"]),
+                        inner.clone()
+                    )
+                        .prop_map(|(a, op, b)| format!("{a} {op} {b}")),
+                    inner.clone().prop_map(|a| format!("-{a}")),
+                    inner.clone().prop_map(|a| format!("({a})")),
+                    (inner.clone(), inner).prop_map(|(a, b)| format!("atan2({a}, {b})")),
+                ]
+            })
+        }
+
+        fn tree(source: &str) -> Expr {
+            let (ast, diagnostics) = parse(&format!("gravity {source}"));
+            assert!(diagnostics.is_empty(), "{source}: {diagnostics:?}");
+            match ast.statements.into_iter().next().map(|s| s.kind) {
+                Some(StatementKind::Gravity(e)) => e,
+                other => panic!("{other:?}"),
+            }
+        }
+
+        /// Compare shapes, ignoring spans.
+        fn shape(expr: &Expr) -> String {
+            super::show(expr)
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+            /// Printing an expression and parsing it back gives the same tree: `Display` puts
+            /// parentheses exactly where precedence and associativity need them.
+            #[test]
+            fn printing_then_parsing_is_the_identity(source in expression()) {
+                let first = tree(&source);
+                let printed = first.to_string();
+                let second = tree(&printed);
+                prop_assert_eq!(shape(&first), shape(&second), "printed as {}", printed);
+            }
+        }
+    }
 }
