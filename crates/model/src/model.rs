@@ -359,7 +359,9 @@ pub struct Inertia {
     /// products of inertia can be omitted).
     pub components: [Option<Expr>; 6],
     /// The point the tensor is taken about: the centre of mass, or a point of the body (fixed,
-    /// for the usual use) given with `about`.
+    /// for the usual use) given with `about`. When it is not the centre of mass `G`, the
+    /// tensor about `G` follows from the parallel-axis theorem,
+    /// `I_G = I_P − m ((r·r) 1 − r ⊗ r)` with `r = G − P` (in body axes).
     pub about: PointId,
     /// Whether it was written as principal moments.
     pub principal: bool,
