@@ -740,6 +740,25 @@ impl Model {
         &self.declarations
     }
 
+    /// The declaration called `name`, if any (`origin` and other built-ins are not
+    /// declarations). For the command line, e.g. to override a parameter's value by name.
+    #[must_use]
+    pub fn find(&self, name: &str) -> Option<Declaration> {
+        self.declarations.iter().copied().find(|declaration| {
+            let declared = match *declaration {
+                Declaration::Coordinate(id) => Some(&self.coordinate(id).name),
+                Declaration::Parameter(id) => Some(&self.parameter(id).name),
+                Declaration::Input(id) => Some(&self.input(id).name),
+                Declaration::Constant(id) => Some(&self.constant(id).name),
+                Declaration::Frame(id) => Some(&self.frame(id).name),
+                Declaration::Point(id) => Some(&self.point(id).name),
+                Declaration::Body(id) => Some(&self.body(id).name),
+                Declaration::Constraint(id) => self.constraint(id).name.as_ref(),
+            };
+            declared.is_some_and(|declared| declared.name == name)
+        })
+    }
+
     /// Warnings found while checking (an unused coordinate or parameter, …): the model is
     /// valid, but something is probably not what was meant.
     #[must_use]
