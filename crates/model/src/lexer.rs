@@ -12,7 +12,8 @@ use crate::span::Span;
 
 /// The kinds of token of the model language.
 #[derive(Logos, Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[logos(skip r"[ \t\r\f]+")]
+// No-break spaces and a byte-order mark are whitespace too: editors insert them unseen.
+#[logos(skip r"[ \t\r\f\u{A0}\u{FEFF}]+")]
 // A comment runs to the end of its line; greedy is exactly what is meant.
 #[logos(skip(r"#[^\n]*", allow_greedy = true))]
 pub enum Token {
@@ -164,14 +165,31 @@ pub fn lex(source: &str) -> (Vec<Spanned>, Vec<Diagnostic>) {
                     }
                 }
                 let text = source.get(span.range()).unwrap_or("").to_string();
-                diagnostics.push(Diagnostic::new(
-                    DiagnosticKind::InvalidCharacter { text },
-                    span,
-                ));
+                let help = confusable_help(&text);
+                diagnostics.push(
+                    Diagnostic::new(DiagnosticKind::InvalidCharacter { text }, span)
+                        .with_help(help),
+                );
             }
         }
     }
     (join_lines(source, &raw), diagnostics)
+}
+
+/// How to mend a character that is not part of the language, for the usual look-alikes of
+/// typeset mathematics.
+fn confusable_help(text: &str) -> &'static str {
+    match text.chars().next() {
+        Some('’' | '‘' | '′' | '`') => "Write a rate with the ASCII apostrophe: `theta'`.",
+        Some('×' | '·' | '⋅' | '∙') => "Multiply with `*`.",
+        Some('−' | '–' | '—') => "Write minus as the ASCII `-`.",
+        Some('²' | '³') => "Write powers with `^`: `x^2`.",
+        Some('÷') => "Divide with `/`.",
+        Some(';') => "Write one statement per line; `;` does not separate statements.",
+        Some('[' | ']' | '{' | '}') => "Group with parentheses `( )`.",
+        Some('"') => "The language has no strings: names are written bare.",
+        _ => "Remove it. (Comments start with `#`.)",
+    }
 }
 
 /// Drop the line breaks that continue a statement (see the module doc) and the `\` before them.
@@ -249,6 +267,21 @@ mod tests {
             kinds("f(a\npoint"),
             vec![Name, LParen, Name, Newline, Name, Newline, Eof]
         );
+    }
+
+    #[test]
+    fn typeset_look_alikes_get_a_hint() {
+        let (_, diagnostics) = lex("x’ × 2 − y");
+        let helps: Vec<&str> = diagnostics
+            .iter()
+            .filter_map(|d| d.help.as_deref())
+            .collect();
+        assert_eq!(helps.len(), 3);
+        assert!(
+            helps[0].contains("apostrophe") && helps[1].contains('*') && helps[2].contains("minus")
+        );
+        // Invisible spaces are spaces.
+        assert!(lex("\u{FEFF}x\u{A0}= 1").1.is_empty());
     }
 
     #[test]
