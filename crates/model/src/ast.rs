@@ -10,6 +10,10 @@ use crate::span::Span;
 pub struct Ast {
     /// The statements, in file order.
     pub statements: Vec<Statement>,
+    /// Names that statements with syntax errors seem to declare (`x` and `y` in the broken
+    /// `coordinates x, y,`). The checker does not know them, so [`crate::load`] drops its
+    /// "unknown name" reports about them: they would only repeat the syntax error.
+    pub names_in_broken_declarations: Vec<String>,
 }
 
 /// A name and where it is written.

@@ -57,10 +57,16 @@ pub fn load(source: &str) -> Result<Model, Diagnostics> {
         Ok(model) if syntax_ok => Ok(model),
         Ok(_) => Err(Diagnostics(diagnostics)),
         Err(more) => {
-            // After a syntax error, skipped lines may leave names undeclared; the checker's
-            // reports about those names would only repeat the syntax error, but they are kept:
-            // they point at real uses and disappear with the fix.
-            diagnostics.extend(more);
+            // Names that a broken declaration seems to declare are unknown to the checker; its
+            // reports about them would only repeat the syntax error, so they are dropped.
+            let skipped = &ast.names_in_broken_declarations;
+            diagnostics.extend(more.into_iter().filter(|d| match &d.kind {
+                DiagnosticKind::UnknownName { name } | DiagnosticKind::UndefinedPoint { name } => {
+                    !skipped.contains(name)
+                }
+                DiagnosticKind::NoCoordinates => skipped.is_empty(),
+                _ => true,
+            }));
             diagnostics.sort_by_key(|d| (d.span.start, d.span.end));
             Err(Diagnostics(diagnostics))
         }

@@ -30,9 +30,14 @@ pub fn parse(source: &str) -> (Ast, Vec<Diagnostic>) {
         position: 0,
         depth: 0,
         diagnostics,
+        broken_names: Vec::new(),
     };
     let statements = parser.file();
-    (Ast { statements }, parser.diagnostics)
+    let ast = Ast {
+        statements,
+        names_in_broken_declarations: parser.broken_names,
+    };
+    (ast, parser.diagnostics)
 }
 
 type ParseResult<T> = Result<T, Diagnostic>;
@@ -47,6 +52,7 @@ struct Parser<'s> {
     position: usize,
     depth: usize,
     diagnostics: Vec<Diagnostic>,
+    broken_names: Vec<String>,
 }
 
 impl<'s> Parser<'s> {
@@ -157,6 +163,7 @@ impl<'s> Parser<'s> {
                 break;
             }
             let start = self.peek().span;
+            let first_token = self.position;
             let result = self.statement().and_then(|kind| {
                 if self.at(Token::Newline) {
                     Ok(kind)
@@ -176,10 +183,44 @@ impl<'s> Parser<'s> {
                     while !self.at(Token::Newline) && !self.at(Token::Eof) {
                         self.bump();
                     }
+                    self.note_broken_declaration(first_token);
                 }
             }
         }
         statements
+    }
+
+    /// Remember the names that the broken statement starting at token `first` seems to
+    /// declare: the name after a declaring keyword, and for lists, each name after a comma
+    /// outside parentheses.
+    fn note_broken_declaration(&mut self, first: usize) {
+        let tokens = self.tokens.get(first..self.position).unwrap_or(&[]);
+        let Some(keyword) = tokens.first().filter(|t| t.token == Token::Name) else {
+            return;
+        };
+        let list = match self.text(keyword.span) {
+            "coordinate" | "coordinates" | "parameter" | "parameters" | "input" | "inputs"
+            | "constant" | "constants" | "driven" => true,
+            "frame" | "point" | "body" | "constraint" => false,
+            _ => return,
+        };
+        let mut depth = 0usize;
+        let mut expect_name = true;
+        for token in tokens.iter().skip(1) {
+            match token.token {
+                Token::Name if expect_name => {
+                    self.broken_names.push(self.text(token.span).to_string())
+                }
+                Token::LParen => depth += 1,
+                Token::RParen => depth = depth.saturating_sub(1),
+                Token::Comma if list && depth == 0 => {
+                    expect_name = true;
+                    continue;
+                }
+                _ => {}
+            }
+            expect_name = false;
+        }
     }
 
     fn statement(&mut self) -> ParseResult<StatementKind> {

@@ -524,6 +524,17 @@ fn several_errors_are_reported_in_one_run() {
 }
 
 #[test]
+fn a_broken_declaration_does_not_cascade() {
+    let source =
+        "coordinates x, y,\nframe N\npoint P = x*N.x + y*N.y\nparticle P mass 1\npoint Q = z*N.x\n";
+    let found = diagnostics(source);
+    let codes: Vec<&str> = found.iter().map(|d| d.kind.code()).collect();
+    // The syntax error, and the genuinely unknown `z`; not `x` and `y`, nor "no coordinates".
+    assert_eq!(codes, ["E002", "E101"], "{found:#?}");
+    assert_eq!(found[1].message(), "unknown name `z`");
+}
+
+#[test]
 fn rendering_shows_file_line_column_underline_and_help() {
     let source = "coordinates theta\nframe N\npoint P = thta*N.x\n";
     let errors = model::load(source).unwrap_err();
