@@ -15,13 +15,15 @@
 //! The parts: [`parse`] (text → [`ast::Ast`] and syntax diagnostics), [`check`] (AST →
 //! [`Model`] or diagnostics), [`load`] (both), [`Model::require_values`] (what numeric work
 //! still needs), [`Model::summary`] (what `lagrange check` prints), [`render`] and
-//! [`render_short`] (diagnostics → text).
+//! [`render_short`] (diagnostics → text), and [`Model::evaluate`] (a plain-`f64` reading of the
+//! model's expressions at a state: the reference to check the symbolic lowering against).
 #![warn(missing_docs)]
 
 pub mod ast;
 mod check;
 mod diagnostic;
 mod display;
+mod evaluate;
 pub mod lexer;
 mod model;
 mod parser;
@@ -33,6 +35,7 @@ mod values;
 pub use check::check;
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Label, NameKind, Severity, Type};
 pub use display::DisplayExpr;
+pub use evaluate::{EvaluationError, State, Value};
 pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
     ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,

@@ -55,6 +55,11 @@ id_type! {
     ConstraintId,
 }
 
+impl PointId {
+    /// The built-in `origin`, the fixed origin of the inertial frame.
+    pub const ORIGIN: PointId = PointId(0);
+}
+
 /// A name with where it is declared.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Name {
