@@ -18,6 +18,24 @@ fn pipeline(source: &str) {
                 source,
                 model::RenderOptions::default(),
             );
+            // Evaluate every point and output at an arbitrary state.
+            let n = model.coordinates().len();
+            let (q, rates) = (vec![0.3; n], vec![-0.7; n]);
+            let state = model::State {
+                time: 1.5,
+                coordinates: &q,
+                rates: &rates,
+            };
+            for point in model.points() {
+                if let Some(position) = &point.position {
+                    let _ = model.evaluate(position, &state);
+                }
+            }
+            for output in model.outputs() {
+                if let model::Quantity::Expr(value) = &output.quantity {
+                    let _ = model.evaluate(value, &state);
+                }
+            }
             let values = model.require_values();
             let _ = model::render(&values, "m.lag", source, model::RenderOptions::default());
         }
