@@ -399,6 +399,49 @@ pub enum DiagnosticKind {
 }
 
 impl DiagnosticKind {
+    /// A short note for the underline of the offending text, where the message alone would
+    /// be repeated; `None` means "use the message".
+    #[must_use]
+    pub fn underline_note(&self) -> Option<String> {
+        use DiagnosticKind::*;
+        Some(match self {
+            InvalidCharacter { .. } => "not part of the language".to_string(),
+            UnexpectedToken { expected, .. } => format!("expected {expected}"),
+            UnknownStatement { .. } => "not a statement keyword".to_string(),
+            TooDeep { .. } => "nested too deeply".to_string(),
+            NumberOutOfRange { .. } => "too large".to_string(),
+            DuplicateClause { .. } => "given again here".to_string(),
+            UnknownOption { .. } => "not an option here".to_string(),
+            UnknownName { .. } => "not declared".to_string(),
+            ReservedName { .. } => "reserved".to_string(),
+            UsedBeforeDefinition { .. } => "used here".to_string(),
+            WrongKind { found, .. } => format!("this is {}", found.with_article()),
+            UndefinedPoint { .. } => "no such point".to_string(),
+            UnknownFunction { .. } => "no such function".to_string(),
+            WrongArity { found, .. } => {
+                format!("{found} argument{}", if *found == 1 { "" } else { "s" })
+            }
+            UnknownAxis { .. } | UnknownRotationAxis { .. } => "not `x`, `y` or `z`".to_string(),
+            SecondInertialFrame { .. } => "a second inertial frame".to_string(),
+            NotAValue { kind, .. } => format!("this is {}", kind.with_article()),
+            TypeMismatch { found, .. } => format!("this is a {found}"),
+            InvalidOperands { .. } => "here".to_string(),
+            RateOfNonCoordinate { .. } | RateNotAllowed { .. } => "a rate".to_string(),
+            NotConstant { .. } => "not constant enough".to_string(),
+            BodyMissing { clause, .. } => format!("no {clause}"),
+            NotAnEquation => "no `=`".to_string(),
+            InitialNotCoordinate { kind, .. } | ReactionNotConstraint { kind, .. } => {
+                format!("this is {}", kind.with_article())
+            }
+            DuplicateInitial { .. } => "given again here".to_string(),
+            ConstraintWithoutCoordinates => "no coordinate here".to_string(),
+            NonPositiveMass { value } | NegativeMoment { value } => format!("= {value}"),
+            UnusedCoordinate { .. } | UnusedParameter { .. } => "declared here".to_string(),
+            MissingValue { .. } => "no value".to_string(),
+            _ => return None,
+        })
+    }
+
     /// A stable code for the error catalogue in `docs/language.md` (`E101`, …).
     #[must_use]
     pub fn code(&self) -> &'static str {

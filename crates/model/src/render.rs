@@ -74,12 +74,13 @@ pub fn render(
         };
         let primary = clamp(diagnostic.span);
         let mut label = Label::new((file_name, primary.clone())).with_order(0);
-        label = label.with_message(
-            diagnostic
-                .label
-                .clone()
-                .unwrap_or_else(|| diagnostic.message()),
-        );
+        // The header carries the message; the underline gets a short note, so that the two
+        // do not say the same thing twice.
+        let note = diagnostic
+            .label
+            .clone()
+            .or_else(|| diagnostic.kind.underline_note());
+        label = label.with_message(note.unwrap_or_else(|| diagnostic.message()));
         if options.color {
             label = label.with_color(Color::Red);
         }

@@ -549,7 +549,7 @@ fn rendering_shows_file_line_column_underline_and_help() {
    |
  3 | point P = thta*N.x
    |           ^^|^
-   |             `--- unknown name `thta`
+   |             `--- not declared
    |
    | Help: Did you mean `theta`?
 ---'
