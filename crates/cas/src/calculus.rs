@@ -1,0 +1,286 @@
+//! Derivatives and series: `∂/∂x`, the total time derivative `d/dt`, and Taylor expansion.
+//!
+//! Derivatives work on the normal form: the derivative of a polynomial is collected atom by
+//! atom (`∂P/∂a · da` for every atom `a` that depends on the variable), and the quotient rule
+//! handles the denominator. The result is again in normal form. Coordinates are functions of
+//! time: `d/dt q = q̇`, `d/dt q̇ = q̈`, while for partial derivatives `q`, `q̇`, `q̈` are
+//! independent variables, as Lagrange's equations treat them.
+
+use rustc_hash::FxHashMap;
+
+use crate::expr::{Expr, Func, Node, Symbol, SymbolKind};
+use crate::normal::{from_rf, Normalizer, Rf};
+use crate::number::Number;
+use crate::poly::{atom_info, plain_atom, AtomId, AtomKind, Monomial, Poly};
+
+/// The variable of a derivative was not a symbol.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("can only differentiate with respect to a symbol")]
+pub struct NotASymbol;
+
+#[derive(Clone, Copy)]
+enum Wrt {
+    Partial(Expr),
+    Time,
+}
+
+struct Deriver {
+    wrt: Wrt,
+    normalizer: Normalizer,
+    atoms: FxHashMap<AtomId, Rf>,
+}
+
+impl Deriver {
+    fn new(wrt: Wrt) -> Deriver {
+        Deriver {
+            wrt,
+            normalizer: Normalizer::default(),
+            atoms: FxHashMap::default(),
+        }
+    }
+
+    fn expr(&mut self, e: Expr) -> Rf {
+        let r = self.normalizer.rf(e);
+        self.rf(&r)
+    }
+
+    fn rf(&mut self, r: &Rf) -> Rf {
+        let dn = self.poly(&r.num);
+        if r.den.is_one() {
+            return dn;
+        }
+        let dd = self.poly(&r.den);
+        // (N/D)' = (N' D − N D') / D²
+        let num = dn
+            .mul(&Rf::from_poly(r.den.clone()))
+            .sub(&Rf::from_poly(r.num.clone()).mul(&dd));
+        num.div(&Rf::from_poly(r.den.mul(&r.den)))
+            .unwrap_or_else(Rf::zero)
+    }
+
+    fn poly(&mut self, p: &Poly) -> Rf {
+        let mut buckets: FxHashMap<AtomId, Vec<(Monomial, Number)>> = FxHashMap::default();
+        let mut order: Vec<AtomId> = Vec::new();
+        for (m, c) in &p.terms {
+            for (i, &(a, e)) in m.iter().enumerate() {
+                if self.atom(a).is_zero() {
+                    continue;
+                }
+                let mut reduced = m.clone();
+                if e == 1 {
+                    reduced.remove(i);
+                } else {
+                    reduced[i].1 = e - 1;
+                }
+                let coefficient = c.mul(&Number::int(e as i64));
+                buckets
+                    .entry(a)
+                    .or_insert_with(|| {
+                        order.push(a);
+                        Vec::new()
+                    })
+                    .push((reduced, coefficient));
+            }
+        }
+        let mut result = Rf::zero();
+        for a in order {
+            let partial = Poly::from_terms(buckets.remove(&a).unwrap_or_default());
+            let da = self.atom(a);
+            result = result.add(&Rf::from_poly(partial).mul(&da));
+        }
+        result
+    }
+
+    fn atom(&mut self, a: AtomId) -> Rf {
+        if let Some(r) = self.atoms.get(&a) {
+            return r.clone();
+        }
+        let info = atom_info(a);
+        let r = match info.kind {
+            AtomKind::Sin { angle, cos } => Rf::atom(cos).mul(&self.expr(angle)),
+            AtomKind::Cos { angle, sin } => Rf::atom(sin).neg().mul(&self.expr(angle)),
+            AtomKind::Root { base, q } => {
+                // d(b^(1/q)) = (1/q) b^(1/q) b' / b
+                let db = self.poly(&base);
+                if db.is_zero() {
+                    Rf::zero()
+                } else {
+                    let r = Rf::atom(a)
+                        .mul(&db)
+                        .scale(&Number::rational(1, q as i64).unwrap_or(Number::ONE));
+                    r.div(&Rf::from_poly(base)).unwrap_or_else(Rf::zero)
+                }
+            }
+            AtomKind::Plain => self.plain(info.expr),
+        };
+        self.atoms.insert(a, r.clone());
+        r
+    }
+
+    fn plain(&mut self, e: Expr) -> Rf {
+        match e.node() {
+            Node::Symbol(s) => match self.wrt {
+                Wrt::Partial(x) => {
+                    if e == x {
+                        Rf::one()
+                    } else {
+                        Rf::zero()
+                    }
+                }
+                Wrt::Time => match s.kind() {
+                    SymbolKind::Time => Rf::one(),
+                    SymbolKind::TimeFunction { .. } => match s.rate(1) {
+                        Some(r) => Rf::atom(plain_atom(Expr::from_symbol(r))),
+                        None => Rf::zero(),
+                    },
+                    _ => Rf::zero(),
+                },
+            },
+            Node::Pow([b, x]) => {
+                // d(b^x) = b^x (x' ln b + x b'/b)
+                let (b, x) = (*b, *x);
+                let db = self.expr(b);
+                let dx = self.expr(x);
+                if db.is_zero() && dx.is_zero() {
+                    return Rf::zero();
+                }
+                let d = dx.to_expr() * b.ln() + x * db.to_expr() / b;
+                self.normalizer.rf(e * d)
+            }
+            Node::Func(f, args) => self.function(*f, args),
+            _ => Rf::zero(),
+        }
+    }
+
+    fn function(&mut self, f: Func, args: &[Expr]) -> Rf {
+        let u = args[0];
+        let du = self.expr(u);
+        if f != Func::Atan2 && du.is_zero() {
+            return Rf::zero();
+        }
+        let du_e = du.to_expr();
+        let one = Expr::one();
+        let d = match f {
+            Func::Sin => u.cos() * du_e,
+            Func::Cos => -(u.sin() * du_e),
+            Func::Tan => du_e / u.cos().powi(2),
+            Func::Asin => du_e / (one - u.powi(2)).sqrt(),
+            Func::Acos => -(du_e / (one - u.powi(2)).sqrt()),
+            Func::Atan => du_e / (one + u.powi(2)),
+            Func::Atan2 => {
+                let (y, x) = (args[0], args[1]);
+                let dy = du_e;
+                let dx = self.expr(x).to_expr();
+                (x * dy - y * dx) / (x.powi(2) + y.powi(2))
+            }
+            Func::Exp => u.exp() * du_e,
+            Func::Ln => du_e / u,
+            Func::Abs => u.sign() * du_e,
+            // The sign function is piecewise constant; its derivative is zero where defined.
+            Func::Sign => Expr::zero(),
+        };
+        self.normalizer.rf(d)
+    }
+}
+
+impl Expr {
+    /// The partial derivative `∂self/∂var`, in normal form. Coordinates and their rates are
+    /// independent variables here (`∂q̇/∂q = 0`).
+    pub fn diff(self, var: Symbol) -> Expr {
+        let mut d = Deriver::new(Wrt::Partial(Expr::from_symbol(var)));
+        let r = d.expr(self);
+        from_rf(&r)
+    }
+
+    /// The partial derivative with respect to an expression that must be a symbol.
+    pub fn try_diff(self, var: Expr) -> Result<Expr, NotASymbol> {
+        match var.as_symbol() {
+            Some(s) => Ok(self.diff(s)),
+            None => Err(NotASymbol),
+        }
+    }
+
+    /// The total time derivative `d/dt`, in normal form: `t` has rate 1, a function of time
+    /// `q` has rate `q̇` (and `q̇` has `q̈`), other symbols are constant.
+    pub fn dt(self) -> Expr {
+        let mut d = Deriver::new(Wrt::Time);
+        let r = d.expr(self);
+        from_rf(&r)
+    }
+
+    /// The Taylor polynomial of total degree `order` about `point` (pairs of a variable and
+    /// its value there), in normal form. `order = 1` is the linearization.
+    ///
+    /// With `h = x − x₀`, this is `Σ_{k ≤ order} (1/k!) dᵏ/dεᵏ f(x₀ + ε h) |_{ε=0}`.
+    pub fn taylor(self, point: &[(Symbol, Expr)], order: u32) -> Expr {
+        let eps = Expr::symbol("\u{1}taylor_epsilon");
+        let eps_sym = eps.as_symbol().expect("a symbol expression holds a symbol");
+        let shifted: Vec<(Expr, Expr)> = point
+            .iter()
+            .map(|(x, x0)| {
+                let xe = Expr::from_symbol(*x);
+                (xe, *x0 + eps * (xe - *x0))
+            })
+            .collect();
+        let mut g = self.subs(&shifted).normal();
+        let mut total = Expr::zero();
+        let mut factorial = Number::ONE;
+        for k in 0..=order {
+            if k > 0 {
+                g = g.diff(eps_sym);
+                factorial = factorial.mul(&Number::int(k as i64));
+            }
+            let at_zero = g.subs(&[(eps, Expr::zero())]);
+            let inv = factorial.recip().unwrap_or(Number::ONE);
+            total += Expr::number(inv) * at_zero;
+        }
+        total.normal()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_derivative_follows_the_chain_rule() {
+        let th = Expr::coordinate("theta");
+        let thd = Expr::rate("theta", 1);
+        let thdd = Expr::rate("theta", 2);
+        let l = Expr::symbol("l");
+        assert!((l * th.cos()).dt().equals(-(l * thd * th.sin())));
+        assert!((thd * th.cos())
+            .dt()
+            .equals(thdd * th.cos() - thd.powi(2) * th.sin()));
+        assert_eq!(Expr::time().powi(2).dt(), (2 * Expr::time()).normal());
+    }
+
+    #[test]
+    fn partial_derivatives_treat_rates_as_independent() {
+        let x = Expr::coordinate("x");
+        let xd = Expr::rate("x", 1);
+        let k = x.powi(2) * xd;
+        assert!(k.diff(x.as_symbol().unwrap()).equals(2 * x * xd));
+        assert!(k.diff(xd.as_symbol().unwrap()).equals(x.powi(2)));
+    }
+
+    #[test]
+    fn quotient_and_functions() {
+        let x = Expr::symbol("x");
+        let s = x.as_symbol().unwrap();
+        assert!((Expr::one() / x).diff(s).equals(-(x.powi(-2))));
+        assert!(x.ln().diff(s).equals(Expr::one() / x));
+        assert!(x.sqrt().diff(s).equals(Expr::one() / (2 * x.sqrt())));
+        assert!(x.atan().diff(s).equals(Expr::one() / (1 + x.powi(2))));
+    }
+
+    #[test]
+    fn taylor_of_cosine() {
+        let x = Expr::symbol("x");
+        let s = x.as_symbol().unwrap();
+        let t = x.cos().taylor(&[(s, Expr::zero())], 2);
+        assert!(t.equals(Expr::one() - x.powi(2) / 2));
+        let lin = x.sin().taylor(&[(s, Expr::pi())], 1);
+        assert!(lin.equals(Expr::pi() - x));
+    }
+}

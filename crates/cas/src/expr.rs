@@ -1,0 +1,946 @@
+//! Hash-consed expressions: [`Expr`] is a 4-byte handle to a node stored once in a
+//! process-wide arena, so equal sub-expressions are shared and equality is handle equality.
+//!
+//! The arena is append-only: nodes are never freed or moved, so a node can be read without a
+//! lock and handed out as `&'static Node`. Only interning a new node takes a lock. A process that
+//! derives equations keeps the nodes it made; the arena is sized for hundreds of millions.
+//!
+//! Constructors perform the light, always-valid canonicalisation every CAS does automatically
+//! (flatten sums and products, fold numbers, combine like terms and like bases, order the
+//! operands deterministically). The full canonical form — expanded, trigonometry reduced,
+//! fractions over a common denominator — is [`Expr::normal`] (see `normal.rs`).
+
+use std::cmp::Ordering;
+use std::hash::{BuildHasher, Hash};
+use std::sync::{Mutex, OnceLock};
+
+use hashbrown::HashTable;
+use rustc_hash::{FxBuildHasher, FxHashMap};
+
+use crate::number::Number;
+
+/// A handle to a hash-consed expression node. Copy, 4 bytes; `a == b` iff the expressions are
+/// structurally identical.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Expr(u32);
+
+impl std::fmt::Debug for Expr {
+    /// The node with its children spelled out (the readable printers are in `print`).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.node() {
+            Node::Number(n) => write!(f, "{n}"),
+            Node::Symbol(s) => {
+                write!(f, "{}", s.name())?;
+                for _ in 0..s.order() {
+                    f.write_str("_d")?;
+                }
+                Ok(())
+            }
+            Node::Constant(c) => write!(f, "{c:?}"),
+            Node::Add(c) => f.debug_tuple("Add").field(c).finish(),
+            Node::Mul(c) => f.debug_tuple("Mul").field(c).finish(),
+            Node::Pow([b, e]) => f.debug_tuple("Pow").field(b).field(e).finish(),
+            Node::Func(g, c) => f.debug_tuple(g.name()).field(c).finish(),
+        }
+    }
+}
+
+/// An interned name.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Name(u32);
+
+/// What a symbol stands for with respect to time.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum SymbolKind {
+    /// A quantity that does not change with time (a parameter, a constant, a plain variable).
+    Constant,
+    /// Time, `t`.
+    Time,
+    /// The `order`-th time derivative of a function of time `q(t)` (a coordinate or a
+    /// time-dependent input): 0 is `q`, 1 is `q̇`, 2 is `q̈`.
+    TimeFunction {
+        /// How many times `q` has been differentiated with respect to time.
+        order: u8,
+    },
+}
+
+/// A symbol: a name and its relation to time.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct Symbol {
+    name: Name,
+    kind: SymbolKind,
+}
+
+/// The named functions of the core.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum Func {
+    /// Sine.
+    Sin,
+    /// Cosine.
+    Cos,
+    /// Tangent.
+    Tan,
+    /// Arcsine.
+    Asin,
+    /// Arccosine.
+    Acos,
+    /// Arctangent.
+    Atan,
+    /// Two-argument arctangent `atan2(y, x)`.
+    Atan2,
+    /// Exponential.
+    Exp,
+    /// Natural logarithm (`log` reads as `ln`, as SymPy writes it).
+    Ln,
+    /// Absolute value.
+    Abs,
+    /// Sign: -1, 0 or 1.
+    Sign,
+}
+
+/// Mathematical constants.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug, PartialOrd, Ord)]
+#[non_exhaustive]
+pub enum Constant {
+    /// π.
+    Pi,
+}
+
+/// A node of the expression graph.
+///
+/// Invariants kept by the constructors: `Add` and `Mul` have at least two operands, none of the
+/// same kind (they are flattened), at most one number (the first operand), operands sorted by
+/// [`Expr::cmp_structure`]; a `Mul`'s number is never 1 and no two of its factors share a base.
+#[derive(Clone, PartialEq, Eq, Hash, Debug)]
+pub enum Node {
+    /// A number.
+    Number(Number),
+    /// A symbol.
+    Symbol(Symbol),
+    /// A mathematical constant.
+    Constant(Constant),
+    /// A sum.
+    Add(Box<[Expr]>),
+    /// A product.
+    Mul(Box<[Expr]>),
+    /// A power `[base, exponent]`; `sqrt(x)` is `x ^ (1/2)`.
+    Pow([Expr; 2]),
+    /// A function application.
+    Func(Func, Box<[Expr]>),
+}
+
+// ---------------------------------------------------------------------------------------------
+// The arena.
+
+const CHUNK_BITS: u32 = 12;
+const CHUNK_SIZE: usize = 1 << CHUNK_BITS;
+const CHUNK_COUNT: usize = 1 << 16;
+
+struct Chunk {
+    slots: Box<[OnceLock<Node>]>,
+}
+
+struct Interner {
+    table: HashTable<u32>,
+    len: u32,
+}
+
+fn chunks() -> &'static [OnceLock<Chunk>] {
+    static CHUNKS: OnceLock<Box<[OnceLock<Chunk>]>> = OnceLock::new();
+    CHUNKS.get_or_init(|| (0..CHUNK_COUNT).map(|_| OnceLock::new()).collect())
+}
+
+fn interner() -> &'static Mutex<Interner> {
+    static INTERNER: OnceLock<Mutex<Interner>> = OnceLock::new();
+    INTERNER.get_or_init(|| {
+        Mutex::new(Interner {
+            table: HashTable::new(),
+            len: 0,
+        })
+    })
+}
+
+fn node_of(id: u32) -> &'static Node {
+    let chunk = chunks()[(id >> CHUNK_BITS) as usize]
+        .get()
+        .expect("an Expr handle always points at an initialised chunk");
+    chunk.slots[(id as usize) & (CHUNK_SIZE - 1)]
+        .get()
+        .expect("an Expr handle always points at an initialised node")
+}
+
+fn intern(node: Node) -> Expr {
+    let hasher = FxBuildHasher;
+    let hash = hasher.hash_one(&node);
+    // A poisoned lock only means another thread panicked while holding it; the table itself
+    // is only ever extended after the node is stored, so it is still consistent.
+    let mut guard = interner().lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&id) = guard.table.find(hash, |&id| *node_of(id) == node) {
+        return Expr(id);
+    }
+    let id = guard.len;
+    let chunk_index = (id >> CHUNK_BITS) as usize;
+    assert!(
+        chunk_index < CHUNK_COUNT,
+        "expression arena exhausted ({} nodes)",
+        id
+    );
+    let chunk = chunks()[chunk_index].get_or_init(|| Chunk {
+        slots: (0..CHUNK_SIZE).map(|_| OnceLock::new()).collect(),
+    });
+    let _ = chunk.slots[(id as usize) & (CHUNK_SIZE - 1)].set(node);
+    guard.len += 1;
+    guard
+        .table
+        .insert_unique(hash, id, |&i| hasher.hash_one(node_of(i)));
+    Expr(id)
+}
+
+/// The number of distinct nodes interned so far (a work counter for benchmarks and tests).
+pub fn arena_len() -> usize {
+    interner().lock().unwrap_or_else(|e| e.into_inner()).len as usize
+}
+
+// ---------------------------------------------------------------------------------------------
+// Names and symbols.
+
+struct Names {
+    by_text: FxHashMap<&'static str, u32>,
+    texts: Vec<&'static str>,
+}
+
+fn names() -> &'static Mutex<Names> {
+    static NAMES: OnceLock<Mutex<Names>> = OnceLock::new();
+    NAMES.get_or_init(|| {
+        Mutex::new(Names {
+            by_text: FxHashMap::default(),
+            texts: Vec::new(),
+        })
+    })
+}
+
+impl Name {
+    /// Interns a name.
+    pub fn new(text: &str) -> Name {
+        let mut n = names().lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(&id) = n.by_text.get(text) {
+            return Name(id);
+        }
+        let leaked: &'static str = Box::leak(text.to_owned().into_boxed_str());
+        let id = n.texts.len() as u32;
+        n.texts.push(leaked);
+        n.by_text.insert(leaked, id);
+        Name(id)
+    }
+
+    /// The text of the name.
+    pub fn as_str(self) -> &'static str {
+        names().lock().unwrap_or_else(|e| e.into_inner()).texts[self.0 as usize]
+    }
+}
+
+impl Symbol {
+    /// A symbol of the given kind.
+    pub fn new(name: &str, kind: SymbolKind) -> Symbol {
+        Symbol {
+            name: Name::new(name),
+            kind,
+        }
+    }
+
+    /// The symbol's name (for a rate, the name of the function it is the rate of).
+    pub fn name(self) -> &'static str {
+        self.name.as_str()
+    }
+
+    /// The interned name.
+    pub fn name_id(self) -> Name {
+        self.name
+    }
+
+    /// The symbol's kind.
+    pub fn kind(self) -> SymbolKind {
+        self.kind
+    }
+
+    /// The derivative order of a function of time (0 for other symbols).
+    pub fn order(self) -> u8 {
+        match self.kind {
+            SymbolKind::TimeFunction { order } => order,
+            _ => 0,
+        }
+    }
+
+    /// The same function of time differentiated `k` more times; `None` for a symbol that is not
+    /// a function of time or when the order would overflow.
+    pub fn rate(self, k: u8) -> Option<Symbol> {
+        match self.kind {
+            SymbolKind::TimeFunction { order } => Some(Symbol {
+                name: self.name,
+                kind: SymbolKind::TimeFunction {
+                    order: order.checked_add(k)?,
+                },
+            }),
+            _ => None,
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Leaf constructors and access.
+
+impl Expr {
+    /// The node behind the handle.
+    pub fn node(self) -> &'static Node {
+        node_of(self.0)
+    }
+
+    /// The raw index in the arena (stable for the life of the process; not an order).
+    pub fn index(self) -> u32 {
+        self.0
+    }
+
+    /// A number.
+    pub fn number(n: Number) -> Expr {
+        intern(Node::Number(n))
+    }
+
+    /// An integer.
+    pub fn int(n: i64) -> Expr {
+        Expr::number(Number::int(n))
+    }
+
+    /// The rational `num/den`; `None` when `den` is zero.
+    pub fn rational(num: i64, den: i64) -> Option<Expr> {
+        Number::rational(num, den).map(Expr::number)
+    }
+
+    /// A float (use only for a decimal the user wrote).
+    pub fn float(x: f64) -> Expr {
+        Expr::number(Number::Float(x))
+    }
+
+    /// Zero.
+    pub fn zero() -> Expr {
+        Expr::int(0)
+    }
+
+    /// One.
+    pub fn one() -> Expr {
+        Expr::int(1)
+    }
+
+    /// A symbol that is constant in time (a parameter or a plain variable).
+    pub fn symbol(name: &str) -> Expr {
+        Expr::from_symbol(Symbol::new(name, SymbolKind::Constant))
+    }
+
+    /// A function of time `q(t)` (a generalized coordinate or a time-dependent input).
+    pub fn coordinate(name: &str) -> Expr {
+        Expr::from_symbol(Symbol::new(name, SymbolKind::TimeFunction { order: 0 }))
+    }
+
+    /// The `order`-th time derivative of the function of time `name`.
+    pub fn rate(name: &str, order: u8) -> Expr {
+        Expr::from_symbol(Symbol::new(name, SymbolKind::TimeFunction { order }))
+    }
+
+    /// Time, `t`.
+    pub fn time() -> Expr {
+        Expr::from_symbol(Symbol::new("t", SymbolKind::Time))
+    }
+
+    /// π.
+    pub fn pi() -> Expr {
+        intern(Node::Constant(Constant::Pi))
+    }
+
+    /// An expression made of one symbol.
+    pub fn from_symbol(s: Symbol) -> Expr {
+        intern(Node::Symbol(s))
+    }
+
+    /// The number, if this is one.
+    pub fn as_number(self) -> Option<&'static Number> {
+        match self.node() {
+            Node::Number(n) => Some(n),
+            _ => None,
+        }
+    }
+
+    /// The symbol, if this is one.
+    pub fn as_symbol(self) -> Option<Symbol> {
+        match self.node() {
+            Node::Symbol(s) => Some(*s),
+            _ => None,
+        }
+    }
+
+    /// Whether this is the exact number zero (structurally; see [`Expr::is_zero`] for the
+    /// mathematical test).
+    pub fn is_literal_zero(self) -> bool {
+        matches!(self.node(), Node::Number(n) if n.is_zero())
+    }
+
+    /// Whether this is the exact number one.
+    pub fn is_literal_one(self) -> bool {
+        matches!(self.node(), Node::Number(n) if n.is_one())
+    }
+
+    /// The operands of a sum or product, the base and exponent of a power, the arguments of a
+    /// function; empty for leaves.
+    pub fn children(self) -> &'static [Expr] {
+        match self.node() {
+            Node::Add(c) | Node::Mul(c) | Node::Func(_, c) => c,
+            Node::Pow(pair) => pair,
+            _ => &[],
+        }
+    }
+
+    /// A deterministic total order on expressions that does not depend on the order in which
+    /// they were created, so that printed output is reproducible. Numbers come first, then
+    /// symbols (by name and derivative order), constants, powers, products, sums, functions.
+    pub fn cmp_structure(self, other: Expr) -> Ordering {
+        if self == other {
+            return Ordering::Equal;
+        }
+        let (a, b) = (self.node(), other.node());
+        let rank = |n: &Node| match n {
+            Node::Number(_) => 0,
+            Node::Symbol(_) => 1,
+            Node::Constant(_) => 2,
+            Node::Pow(..) => 3,
+            Node::Mul(_) => 4,
+            Node::Add(_) => 5,
+            Node::Func(..) => 6,
+        };
+        match rank(a).cmp(&rank(b)) {
+            Ordering::Equal => {}
+            o => return o,
+        }
+        match (a, b) {
+            (Node::Number(x), Node::Number(y)) => x.total_cmp(y),
+            (Node::Symbol(x), Node::Symbol(y)) => x.name().cmp(y.name()).then(x.kind.cmp(&y.kind)),
+            (Node::Constant(x), Node::Constant(y)) => x.cmp(y),
+            (Node::Pow([b1, e1]), Node::Pow([b2, e2])) => {
+                b1.cmp_structure(*b2).then_with(|| e1.cmp_structure(*e2))
+            }
+            (Node::Add(x), Node::Add(y)) | (Node::Mul(x), Node::Mul(y)) => cmp_slices(x, y),
+            (Node::Func(f, x), Node::Func(g, y)) => f.cmp(g).then_with(|| cmp_slices(x, y)),
+            _ => Ordering::Equal,
+        }
+    }
+}
+
+fn cmp_slices(x: &[Expr], y: &[Expr]) -> Ordering {
+    // Compare from the last (most significant) operand, so `x + y` sorts by its leading term.
+    for (a, b) in x.iter().rev().zip(y.iter().rev()) {
+        match a.cmp_structure(*b) {
+            Ordering::Equal => continue,
+            o => return o,
+        }
+    }
+    x.len().cmp(&y.len())
+}
+
+// ---------------------------------------------------------------------------------------------
+// Canonicalising constructors.
+
+/// Splits a term into its numeric coefficient and the rest (`3*x*y` → `(3, x*y)`).
+pub(crate) fn split_coefficient(term: Expr) -> (Number, Expr) {
+    match term.node() {
+        Node::Number(n) => (n.clone(), Expr::one()),
+        Node::Mul(f) => match f[0].node() {
+            Node::Number(n) => {
+                let rest = if f.len() == 2 {
+                    f[1]
+                } else {
+                    intern(Node::Mul(f[1..].into()))
+                };
+                (n.clone(), rest)
+            }
+            _ => (Number::ONE, term),
+        },
+        _ => (Number::ONE, term),
+    }
+}
+
+/// Splits a factor into base and exponent (`x^2` → `(x, 2)`, `y` → `(y, 1)`).
+pub(crate) fn split_power(factor: Expr) -> (Expr, Expr) {
+    match factor.node() {
+        Node::Pow([b, e]) => (*b, *e),
+        _ => (factor, Expr::one()),
+    }
+}
+
+impl Expr {
+    /// The sum of the operands, canonicalised.
+    pub fn add_all(terms: impl IntoIterator<Item = Expr>) -> Expr {
+        let mut constant = Number::ZERO;
+        let mut coefficients: FxHashMap<Expr, Number> = FxHashMap::default();
+        let mut order: Vec<Expr> = Vec::new();
+        let mut stack: Vec<Expr> = terms.into_iter().collect();
+        stack.reverse();
+        while let Some(t) = stack.pop() {
+            match t.node() {
+                Node::Add(inner) => stack.extend(inner.iter().rev().copied()),
+                Node::Number(n) => constant = constant.add(n),
+                _ => {
+                    let (c, rest) = split_coefficient(t);
+                    match coefficients.get_mut(&rest) {
+                        Some(acc) => *acc = acc.add(&c),
+                        None => {
+                            coefficients.insert(rest, c);
+                            order.push(rest);
+                        }
+                    }
+                }
+            }
+        }
+        let mut operands: Vec<Expr> = order
+            .into_iter()
+            .filter_map(|rest| {
+                let c = &coefficients[&rest];
+                if c.is_exact_zero() {
+                    None
+                } else {
+                    Some(Expr::scale(c, rest))
+                }
+            })
+            .collect();
+        operands.sort_by(|a, b| a.cmp_structure(*b));
+        if !constant.is_zero() || (constant.is_float() && operands.is_empty()) {
+            operands.insert(0, Expr::number(constant));
+        }
+        match operands.len() {
+            0 => Expr::zero(),
+            1 => operands[0],
+            _ => intern(Node::Add(operands.into())),
+        }
+    }
+
+    /// `c * rest` where `rest` has no numeric factor.
+    fn scale(c: &Number, rest: Expr) -> Expr {
+        if c.is_exact_one() {
+            return rest;
+        }
+        if rest.is_literal_one() {
+            return Expr::number(c.clone());
+        }
+        let mut v: Vec<Expr> = Vec::with_capacity(4);
+        v.push(Expr::number(c.clone()));
+        match rest.node() {
+            Node::Mul(f) => v.extend_from_slice(f),
+            _ => v.push(rest),
+        }
+        intern(Node::Mul(v.into()))
+    }
+
+    /// The product of the factors, canonicalised.
+    pub fn mul_all(factors: impl IntoIterator<Item = Expr>) -> Expr {
+        let mut coefficient = Number::ONE;
+        let mut exponents: FxHashMap<Expr, Vec<Expr>> = FxHashMap::default();
+        let mut order: Vec<Expr> = Vec::new();
+        let mut stack: Vec<Expr> = factors.into_iter().collect();
+        stack.reverse();
+        while let Some(f) = stack.pop() {
+            match f.node() {
+                Node::Mul(inner) => stack.extend(inner.iter().rev().copied()),
+                Node::Number(n) => coefficient = coefficient.mul(n),
+                _ => {
+                    let (base, exp) = split_power(f);
+                    match exponents.get_mut(&base) {
+                        Some(v) => v.push(exp),
+                        None => {
+                            exponents.insert(base, vec![exp]);
+                            order.push(base);
+                        }
+                    }
+                }
+            }
+        }
+        if coefficient.is_zero() {
+            return Expr::number(coefficient);
+        }
+        let mut operands: Vec<Expr> = Vec::with_capacity(order.len() + 1);
+        let mut refold = false;
+        for base in order {
+            let exps = &exponents[&base];
+            let exp = if exps.len() == 1 {
+                exps[0]
+            } else {
+                Expr::add_all(exps.iter().copied())
+            };
+            let p = Expr::pow_raw(base, exp);
+            match p.node() {
+                Node::Number(n) => coefficient = coefficient.mul(n),
+                // A power may split (`(2 x)^2` → `4 x^2`); fold its factors in a second pass.
+                Node::Mul(_) => {
+                    refold = true;
+                    operands.push(p);
+                }
+                _ => operands.push(p),
+            }
+        }
+        if refold {
+            operands.push(Expr::number(coefficient));
+            return Expr::mul_all(operands);
+        }
+        if coefficient.is_zero() {
+            return Expr::number(coefficient);
+        }
+        operands.retain(|e| !e.is_literal_one());
+        operands.sort_by(|a, b| a.cmp_structure(*b));
+        if !coefficient.is_exact_one() || operands.is_empty() {
+            operands.insert(0, Expr::number(coefficient));
+        }
+        match operands.len() {
+            1 => operands[0],
+            _ => intern(Node::Mul(operands.into())),
+        }
+    }
+
+    /// `base ^ exp`, canonicalised.
+    pub fn pow(self, exp: Expr) -> Expr {
+        Expr::mul_all([Expr::pow_raw(self, exp)])
+    }
+
+    fn pow_raw(base: Expr, exp: Expr) -> Expr {
+        if exp.is_literal_zero() {
+            return Expr::one();
+        }
+        if exp.is_literal_one() {
+            return base;
+        }
+        if base.is_literal_one() {
+            return Expr::one();
+        }
+        if let (Node::Number(b), Node::Number(e)) = (base.node(), exp.node()) {
+            if let Some(n) = number_power(b, e) {
+                return Expr::number(n);
+            }
+        }
+        if let Node::Number(e) = exp.node() {
+            if let Some(k) = e.to_i64() {
+                match base.node() {
+                    // (b^e)^k = b^(e k) for integer k.
+                    Node::Pow([b, e2]) => return Expr::pow_raw(*b, Expr::mul_all([*e2, exp])),
+                    // (x y)^k = x^k y^k for integer k.
+                    Node::Mul(f) => {
+                        return Expr::mul_all(f.iter().map(|x| Expr::pow_raw(*x, Expr::int(k))))
+                    }
+                    _ => {}
+                }
+            }
+            if let (Node::Number(b), Some(_)) = (base.node(), e.to_small_ratio()) {
+                if b.is_zero() && e.signum() > 0 {
+                    return Expr::zero();
+                }
+            }
+        }
+        intern(Node::Pow([base, exp]))
+    }
+
+    /// `self ^ k` for an integer `k`.
+    pub fn powi(self, k: i64) -> Expr {
+        self.pow(Expr::int(k))
+    }
+
+    /// The square root, `self ^ (1/2)`.
+    pub fn sqrt(self) -> Expr {
+        self.pow(Expr::number(Number::Small { num: 1, den: 2 }))
+    }
+
+    /// Applies a named function, with the exact evaluations every reader expects
+    /// (`sin 0 = 0`, `cos 0 = 1`, `exp 0 = 1`, `ln 1 = 0`).
+    pub fn func(f: Func, args: Vec<Expr>) -> Expr {
+        if let [a] = args.as_slice() {
+            if a.is_literal_zero() {
+                match f {
+                    Func::Sin | Func::Tan | Func::Asin | Func::Atan | Func::Abs | Func::Sign => {
+                        return Expr::zero()
+                    }
+                    Func::Cos | Func::Exp => return Expr::one(),
+                    _ => {}
+                }
+            }
+            if a.is_literal_one() && f == Func::Ln {
+                return Expr::zero();
+            }
+            if let (Func::Abs, Node::Number(n)) = (f, a.node()) {
+                return Expr::number(n.abs());
+            }
+        }
+        intern(Node::Func(f, args.into()))
+    }
+
+    /// Sine.
+    pub fn sin(self) -> Expr {
+        Expr::func(Func::Sin, vec![self])
+    }
+    /// Cosine.
+    pub fn cos(self) -> Expr {
+        Expr::func(Func::Cos, vec![self])
+    }
+    /// Tangent.
+    pub fn tan(self) -> Expr {
+        Expr::func(Func::Tan, vec![self])
+    }
+    /// Arcsine.
+    pub fn asin(self) -> Expr {
+        Expr::func(Func::Asin, vec![self])
+    }
+    /// Arccosine.
+    pub fn acos(self) -> Expr {
+        Expr::func(Func::Acos, vec![self])
+    }
+    /// Arctangent.
+    pub fn atan(self) -> Expr {
+        Expr::func(Func::Atan, vec![self])
+    }
+    /// `atan2(y, x)`, the angle of the point `(x, y)`.
+    pub fn atan2(y: Expr, x: Expr) -> Expr {
+        Expr::func(Func::Atan2, vec![y, x])
+    }
+    /// Exponential.
+    pub fn exp(self) -> Expr {
+        Expr::func(Func::Exp, vec![self])
+    }
+    /// Natural logarithm.
+    pub fn ln(self) -> Expr {
+        Expr::func(Func::Ln, vec![self])
+    }
+    /// Absolute value.
+    pub fn abs(self) -> Expr {
+        Expr::func(Func::Abs, vec![self])
+    }
+    /// Sign.
+    pub fn sign(self) -> Expr {
+        Expr::func(Func::Sign, vec![self])
+    }
+}
+
+/// `b ^ e` for numbers when the result is a number (exact where possible).
+fn number_power(b: &Number, e: &Number) -> Option<Number> {
+    if let Some(k) = e.to_i64() {
+        return b.powi(k);
+    }
+    if b.is_float() || e.is_float() {
+        let (x, y) = (b.to_f64(), e.to_f64());
+        let r = x.powf(y);
+        return r.is_finite().then_some(Number::Float(r));
+    }
+    let (p, q) = e.to_small_ratio()?;
+    let q = u32::try_from(q).ok()?;
+    let root = b.exact_root(q)?;
+    root.powi(p)
+}
+
+impl Func {
+    /// The function's name as SymPy spells it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Atan2 => "atan2",
+            Func::Exp => "exp",
+            Func::Ln => "log",
+            Func::Abs => "Abs",
+            Func::Sign => "sign",
+        }
+    }
+
+    /// How many arguments the function takes.
+    pub fn arity(self) -> usize {
+        match self {
+            Func::Atan2 => 2,
+            _ => 1,
+        }
+    }
+
+    /// Looks a function up by the names a user may write (`log` and `ln` are both `ln`).
+    pub fn from_name(name: &str) -> Option<Func> {
+        Some(match name {
+            "sin" => Func::Sin,
+            "cos" => Func::Cos,
+            "tan" => Func::Tan,
+            "asin" => Func::Asin,
+            "acos" => Func::Acos,
+            "atan" => Func::Atan,
+            "atan2" => Func::Atan2,
+            "exp" => Func::Exp,
+            "ln" | "log" => Func::Ln,
+            "abs" | "Abs" => Func::Abs,
+            "sign" => Func::Sign,
+            _ => return None,
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Operators.
+
+impl std::ops::Add for Expr {
+    type Output = Expr;
+    fn add(self, rhs: Expr) -> Expr {
+        Expr::add_all([self, rhs])
+    }
+}
+
+impl std::ops::Sub for Expr {
+    type Output = Expr;
+    fn sub(self, rhs: Expr) -> Expr {
+        Expr::add_all([self, -rhs])
+    }
+}
+
+impl std::ops::Mul for Expr {
+    type Output = Expr;
+    fn mul(self, rhs: Expr) -> Expr {
+        Expr::mul_all([self, rhs])
+    }
+}
+
+impl std::ops::Div for Expr {
+    type Output = Expr;
+    fn div(self, rhs: Expr) -> Expr {
+        Expr::mul_all([self, rhs.powi(-1)])
+    }
+}
+
+impl std::ops::Neg for Expr {
+    type Output = Expr;
+    fn neg(self) -> Expr {
+        Expr::mul_all([Expr::int(-1), self])
+    }
+}
+
+impl std::ops::Add<i64> for Expr {
+    type Output = Expr;
+    fn add(self, rhs: i64) -> Expr {
+        self + Expr::int(rhs)
+    }
+}
+
+impl std::ops::Sub<i64> for Expr {
+    type Output = Expr;
+    fn sub(self, rhs: i64) -> Expr {
+        self - Expr::int(rhs)
+    }
+}
+
+impl std::ops::Mul<i64> for Expr {
+    type Output = Expr;
+    fn mul(self, rhs: i64) -> Expr {
+        self * Expr::int(rhs)
+    }
+}
+
+impl std::ops::Div<i64> for Expr {
+    type Output = Expr;
+    fn div(self, rhs: i64) -> Expr {
+        self / Expr::int(rhs)
+    }
+}
+
+impl std::ops::Mul<Expr> for i64 {
+    type Output = Expr;
+    fn mul(self, rhs: Expr) -> Expr {
+        Expr::int(self) * rhs
+    }
+}
+
+impl std::ops::Add<Expr> for i64 {
+    type Output = Expr;
+    fn add(self, rhs: Expr) -> Expr {
+        Expr::int(self) + rhs
+    }
+}
+
+impl std::ops::Div<Expr> for i64 {
+    type Output = Expr;
+    fn div(self, rhs: Expr) -> Expr {
+        Expr::int(self) / rhs
+    }
+}
+
+impl std::ops::Sub<Expr> for i64 {
+    type Output = Expr;
+    fn sub(self, rhs: Expr) -> Expr {
+        Expr::int(self) - rhs
+    }
+}
+
+impl std::ops::AddAssign for Expr {
+    fn add_assign(&mut self, rhs: Expr) {
+        *self = *self + rhs;
+    }
+}
+
+impl std::ops::SubAssign for Expr {
+    fn sub_assign(&mut self, rhs: Expr) {
+        *self = *self - rhs;
+    }
+}
+
+impl std::ops::MulAssign for Expr {
+    fn mul_assign(&mut self, rhs: Expr) {
+        *self = *self * rhs;
+    }
+}
+
+impl std::iter::Sum for Expr {
+    fn sum<I: Iterator<Item = Expr>>(iter: I) -> Expr {
+        Expr::add_all(iter)
+    }
+}
+
+impl std::iter::Product for Expr {
+    fn product<I: Iterator<Item = Expr>>(iter: I) -> Expr {
+        Expr::mul_all(iter)
+    }
+}
+
+impl From<i64> for Expr {
+    fn from(n: i64) -> Expr {
+        Expr::int(n)
+    }
+}
+
+impl From<Number> for Expr {
+    fn from(n: Number) -> Expr {
+        Expr::number(n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hash_consing_shares_equal_nodes() {
+        let x = Expr::symbol("x");
+        let y = Expr::symbol("y");
+        assert_eq!(x + y, y + x);
+        assert_eq!((x + y) * (x + y), (y + x).powi(2));
+        assert_ne!(Expr::symbol("x"), Expr::coordinate("x"));
+    }
+
+    #[test]
+    fn constructors_fold_like_terms_and_bases() {
+        let x = Expr::symbol("x");
+        assert_eq!(x + x, 2 * x);
+        assert_eq!(x * x, x.powi(2));
+        assert_eq!(x - x, Expr::zero());
+        assert_eq!(x / x, Expr::one());
+        assert_eq!(Expr::int(4).sqrt(), Expr::int(2));
+        assert_eq!((2 * x).powi(2), 4 * x.powi(2));
+        assert_eq!(Expr::int(0).sin(), Expr::zero());
+    }
+}

@@ -1,0 +1,738 @@
+//! The canonical normal form: an expression as a fraction `N / D` of polynomials in atoms.
+//!
+//! Conversion to the normal form expands products and integer powers, expands `sin`, `cos` and
+//! `tan` of sums and integer multiples into products of `sin`/`cos` of single angles (and
+//! evaluates them exactly at multiples of π/6 and π/4), reduces `sin²` with `sin² + cos² = 1`,
+//! reduces powers of roots, splits `exp` of sums, and brings everything over one denominator in
+//! lowest terms (polynomial GCD). The denominator is kept free of `sin` atoms and square roots
+//! (by multiplying with a conjugate), integer-primitive, with a positive leading term in the
+//! structural order. Two expressions of the class mechanics produces are equal exactly when
+//! their normal forms are the same [`Expr`]; `is_zero` is then exact.
+//!
+//! Zero tests ([`Expr::is_zero`], [`Expr::equals`]) are exact for the whole class: a fraction
+//! is zero exactly when its numerator is, and the numerator is a canonical element of
+//! `ℚ[atoms]/(sin² + cos² − 1)`. The *identity* of normal forms needs the denominator to be
+//! rationalised, which is done while it is small; a fraction whose denominator is a long
+//! trigonometric sum is kept as it is, still equal to its input. Outside the class (roots of
+//! higher order in sums under a fraction bar, the same angle written as both `θ/2` and `θ`)
+//! the normal form is still *equal* to its input, but two equal inputs may differ.
+
+use std::sync::{Mutex, OnceLock};
+
+use rustc_hash::FxHashMap;
+
+use crate::expr::{Constant, Expr, Func, Node};
+use crate::number::Number;
+use crate::poly::{
+    self, atom_expr, gcd, plain_atom, root_atom, trig_atoms, AtomId, AtomKind, Monomial, Poly,
+};
+
+/// A fraction of polynomials in canonical form (see the module documentation).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Rf {
+    pub(crate) num: Poly,
+    pub(crate) den: Poly,
+}
+
+impl Rf {
+    pub(crate) fn from_poly(p: Poly) -> Rf {
+        Rf {
+            num: p,
+            den: Poly::one(),
+        }
+    }
+
+    pub(crate) fn constant(c: Number) -> Rf {
+        Rf::from_poly(Poly::constant(c))
+    }
+
+    pub(crate) fn zero() -> Rf {
+        Rf::from_poly(Poly::zero())
+    }
+
+    pub(crate) fn one() -> Rf {
+        Rf::from_poly(Poly::one())
+    }
+
+    pub(crate) fn atom(id: AtomId) -> Rf {
+        Rf::from_poly(Poly::atom(id))
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        self.num.is_zero()
+    }
+
+    pub(crate) fn as_constant(&self) -> Option<Number> {
+        if self.den.is_one() {
+            self.num.as_constant()
+        } else {
+            None
+        }
+    }
+
+    /// `num / den` brought to canonical form; `None` when `den` is zero.
+    pub(crate) fn new(num: Poly, den: Poly) -> Option<Rf> {
+        if den.is_zero() {
+            return None;
+        }
+        if num.is_zero() {
+            return Some(Rf::zero());
+        }
+        if den.is_one() {
+            return Some(Rf::from_poly(num));
+        }
+        let (num, den) = rationalize(num, den);
+        if let Some(c) = den.as_constant() {
+            return Some(Rf::from_poly(num.scale(&c.recip()?)));
+        }
+        let g = gcd(&num, &den);
+        let (num, den) = if g.is_one() || g.as_constant().is_some() {
+            (num, den)
+        } else {
+            match (num.div_exact(&g), den.div_exact(&g)) {
+                (Some(n), Some(d)) => (n, d),
+                _ => (num, den),
+            }
+        };
+        if let Some(c) = den.as_constant() {
+            return Some(Rf::from_poly(num.scale(&c.recip()?)));
+        }
+        let unit = denominator_unit(&den);
+        let inv = unit.recip()?;
+        Some(Rf {
+            num: num.scale(&inv),
+            den: den.scale(&inv),
+        })
+    }
+
+    pub(crate) fn add(&self, other: &Rf) -> Rf {
+        if self.den.is_one() && other.den.is_one() {
+            return Rf::from_poly(self.num.add(&other.num));
+        }
+        if self.den == other.den {
+            return Rf::new(self.num.add(&other.num), self.den.clone()).unwrap_or_else(Rf::zero);
+        }
+        let g = gcd(&self.den, &other.den);
+        let split = if g.as_constant().is_some() {
+            None
+        } else {
+            self.den.div_exact(&g).zip(other.den.div_exact(&g))
+        };
+        let (num, den) = match split {
+            // n1/(g a) + n2/(g b) = (n1 b + n2 a) / (g a b)
+            Some((a, b)) => (self.num.mul(&b).add(&other.num.mul(&a)), self.den.mul(&b)),
+            None => (
+                self.num.mul(&other.den).add(&other.num.mul(&self.den)),
+                self.den.mul(&other.den),
+            ),
+        };
+        Rf::new(num, den).unwrap_or_else(Rf::zero)
+    }
+
+    pub(crate) fn neg(&self) -> Rf {
+        Rf {
+            num: self.num.neg(),
+            den: self.den.clone(),
+        }
+    }
+
+    pub(crate) fn sub(&self, other: &Rf) -> Rf {
+        self.add(&other.neg())
+    }
+
+    pub(crate) fn mul(&self, other: &Rf) -> Rf {
+        if self.den.is_one() && other.den.is_one() {
+            return Rf::from_poly(self.num.mul(&other.num));
+        }
+        Rf::new(self.num.mul(&other.num), self.den.mul(&other.den)).unwrap_or_else(Rf::zero)
+    }
+
+    pub(crate) fn scale(&self, c: &Number) -> Rf {
+        Rf {
+            num: self.num.scale(c),
+            den: self.den.clone(),
+        }
+    }
+
+    /// `1 / self`; `None` for zero.
+    pub(crate) fn recip(&self) -> Option<Rf> {
+        if self.num.is_zero() {
+            return None;
+        }
+        Rf::new(self.den.clone(), self.num.clone())
+    }
+
+    pub(crate) fn div(&self, other: &Rf) -> Option<Rf> {
+        Some(self.mul(&other.recip()?))
+    }
+
+    pub(crate) fn powi(&self, k: i64) -> Option<Rf> {
+        let e = u32::try_from(k.unsigned_abs()).ok()?;
+        let p = Rf::new(self.num.pow(e), self.den.pow(e))?;
+        if k < 0 {
+            p.recip()
+        } else {
+            Some(p)
+        }
+    }
+
+    /// The expression tree of this normal form.
+    pub(crate) fn to_expr(&self) -> Expr {
+        let n = poly_to_expr(&self.num);
+        if self.den.is_one() {
+            return n;
+        }
+        n * poly_to_expr(&self.den).powi(-1)
+    }
+}
+
+/// The coefficient that makes a denominator canonical: integer-primitive with a positive
+/// leading term, where "leading" is the largest monomial in the structural order (so the choice
+/// does not depend on the order atoms were created in).
+fn denominator_unit(den: &Poly) -> Number {
+    let lead = den
+        .terms
+        .iter()
+        .max_by(|a, b| monomial_to_expr(&a.0).cmp_structure(monomial_to_expr(&b.0)))
+        .map(|(_, c)| c.clone())
+        .unwrap_or(Number::ONE);
+    if den.terms.iter().any(|(_, c)| c.is_float()) {
+        return lead;
+    }
+    let content = den.terms.iter().fold(Number::ZERO, |g, (_, c)| g.gcd(c));
+    if lead.is_negative() {
+        content.neg()
+    } else {
+        content
+    }
+}
+
+/// Multiplies numerator and denominator by conjugates until the denominator is free of `sin`
+/// atoms and square roots, and of roots in single-term denominators.
+///
+/// Each conjugation roughly squares the denominator, so this is only done while the
+/// denominator stays small (`RATIONALIZE_MAX_TERMS`); past that the fraction is left as it is.
+/// Zero tests stay exact either way (the numerator alone decides them); only the identity of
+/// two normal forms with large trigonometric denominators is then not guaranteed.
+fn rationalize(num: Poly, den: Poly) -> (Poly, Poly) {
+    const RATIONALIZE_MAX_TERMS: usize = 24;
+    let (original_num, original_den) = (num.clone(), den.clone());
+    let (mut num, mut den) = (num, den);
+    for _ in 0..32 {
+        if den.terms.len() > RATIONALIZE_MAX_TERMS {
+            return (original_num, original_den);
+        }
+        let target = den
+            .atoms()
+            .into_iter()
+            .find(|&a| match poly::atom_info(a).kind {
+                AtomKind::Sin { .. } => true,
+                AtomKind::Root { q, .. } => q == 2 || den.terms.len() == 1,
+                _ => false,
+            });
+        let Some(a) = target else { break };
+        let conj = match poly::atom_info(a).kind {
+            AtomKind::Root { q, .. } if den.terms.len() == 1 => {
+                let e = den.degree(a);
+                Poly::atom_pow(a, q - (e % q))
+            }
+            _ => {
+                // den = A + B a with `a` of degree one: multiply by A − B a.
+                let mut conj = Poly::zero();
+                for (d, c) in den.coefficients_in(a) {
+                    let term = c.mul_raw(&Poly::atom_pow(a, d));
+                    conj = if d % 2 == 1 {
+                        conj.sub(&term)
+                    } else {
+                        conj.add(&term)
+                    };
+                }
+                conj
+            }
+        };
+        num = num.mul(&conj);
+        den = den.mul(&conj);
+    }
+    (num, den)
+}
+
+pub(crate) fn monomial_to_expr(m: &Monomial) -> Expr {
+    Expr::mul_all(m.iter().map(|&(a, e)| atom_expr(a).powi(e as i64)))
+}
+
+pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
+    Expr::add_all(p.terms.iter().map(|(m, c)| {
+        let mut factors = Vec::with_capacity(m.len() + 1);
+        factors.push(Expr::number(c.clone()));
+        factors.extend(m.iter().map(|&(a, e)| atom_expr(a).powi(e as i64)));
+        Expr::mul_all(factors)
+    }))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Expression → normal form.
+
+/// Converts expressions to normal form, remembering the nodes it has seen (expressions are
+/// DAGs: a shared sub-expression is converted once).
+#[derive(Default)]
+pub(crate) struct Normalizer {
+    memo: FxHashMap<Expr, Rf>,
+}
+
+impl Normalizer {
+    pub(crate) fn rf(&mut self, e: Expr) -> Rf {
+        if let Some(r) = self.memo.get(&e) {
+            return r.clone();
+        }
+        let r = self.convert(e);
+        self.memo.insert(e, r.clone());
+        r
+    }
+
+    fn convert(&mut self, e: Expr) -> Rf {
+        match e.node() {
+            Node::Number(n) => Rf::constant(n.clone()),
+            Node::Symbol(_) | Node::Constant(_) => Rf::atom(plain_atom(e)),
+            Node::Add(terms) => {
+                let mut acc = Rf::zero();
+                for t in terms.iter() {
+                    acc = acc.add(&self.rf(*t));
+                }
+                acc
+            }
+            Node::Mul(factors) => {
+                let mut acc = Rf::one();
+                for f in factors.iter() {
+                    acc = acc.mul(&self.rf(*f));
+                    if acc.is_zero() {
+                        break;
+                    }
+                }
+                acc
+            }
+            Node::Pow([base, exp]) => self.power(*base, *exp),
+            Node::Func(f, args) => self.function(*f, args),
+        }
+    }
+
+    fn opaque(&mut self, e: Expr) -> Rf {
+        Rf::atom(plain_atom(e))
+    }
+
+    fn power(&mut self, base: Expr, exp: Expr) -> Rf {
+        let b = self.rf(base);
+        let x = self.rf(exp);
+        if let Some(k) = x.as_constant() {
+            if let Some(k) = k.to_i64() {
+                return b
+                    .powi(k)
+                    .unwrap_or_else(|| self.opaque(Expr::pow(b.to_expr(), Expr::int(k))));
+            }
+            if let Some((p, q)) = k.to_small_ratio() {
+                if let Ok(q) = u32::try_from(q) {
+                    if let Some(r) = self.rational_power(&b, p, q) {
+                        return r;
+                    }
+                }
+            }
+            if k.is_float() {
+                if let Some(c) = b.as_constant() {
+                    let v = c.to_f64().powf(k.to_f64());
+                    if v.is_finite() {
+                        return Rf::constant(Number::Float(v));
+                    }
+                }
+            }
+        }
+        if let Some(c) = b.as_constant() {
+            if c.is_zero() || c.is_one() {
+                return Rf::constant(c);
+            }
+        }
+        // A symbolic exponent: keep `b^x` as an atom of normalised parts.
+        let atom = Expr::pow(b.to_expr(), x.to_expr());
+        match atom.node() {
+            Node::Pow(..) => self.opaque(atom),
+            _ => self.rf(atom),
+        }
+    }
+
+    /// `b^(p/q)` for `q ≥ 2`, through the root atom `(N D^(q−1))^(1/q)`.
+    fn rational_power(&mut self, b: &Rf, p: i64, q: u32) -> Option<Rf> {
+        if let Some(c) = b.as_constant() {
+            if c.is_float() {
+                let v = c.to_f64().powf(p as f64 / q as f64);
+                return v.is_finite().then(|| Rf::constant(Number::Float(v)));
+            }
+        }
+        // (N/D)^(1/q) = (N D^(q−1))^(1/q) / D.
+        let radicand = b.num.mul(&b.den.pow(q - 1));
+        let root = self.root_of_poly(&radicand, q)?;
+        let root = root.div(&Rf::from_poly(b.den.clone()))?;
+        root.powi(p)
+    }
+
+    /// `P^(1/q)` for a polynomial `P`: the rational content's exact part comes out, the rest
+    /// becomes root atoms of a number and of a primitive polynomial.
+    fn root_of_poly(&mut self, p: &Poly, q: u32) -> Option<Rf> {
+        if p.is_zero() {
+            return Some(Rf::zero());
+        }
+        let content = p.content();
+        let primitive = p.scale(&content.recip()?);
+        let mut result = self.root_of_number(&content, q)?;
+        if !primitive.is_one() {
+            let expr = Expr::pow(
+                poly_to_expr(&primitive),
+                Expr::number(Number::rational(1, q as i64)?),
+            );
+            let id = root_atom(expr, primitive, q);
+            result = result.mul(&Rf::atom(id));
+        }
+        Some(result)
+    }
+
+    fn root_of_number(&mut self, c: &Number, q: u32) -> Option<Rf> {
+        if let Some(r) = c.exact_root(q) {
+            return Some(Rf::constant(r));
+        }
+        // Split c = s^q · r with r free of q-th powers: integers by trial division.
+        let (n, d) = c.to_small_ratio()?;
+        // c = n/d; write as (n d^(q−1)) / d^q so only an integer is under the root.
+        let mut radicand = (n as i128).checked_mul((d as i128).checked_pow(q - 1)?)?;
+        let mut outside: i128 = 1;
+        let negative = radicand < 0;
+        radicand = radicand.abs();
+        let mut f: i128 = 2;
+        while f * f <= radicand && f < 10_000 {
+            let fq = f.checked_pow(q)?;
+            while radicand % fq == 0 {
+                radicand /= fq;
+                outside *= f;
+            }
+            f += 1;
+        }
+        if negative {
+            radicand = -radicand;
+        }
+        let scale = Number::rational(i64::try_from(outside).ok()?, d)?;
+        if radicand == 1 {
+            return Some(Rf::constant(scale));
+        }
+        let r = Number::int(i64::try_from(radicand).ok()?);
+        let expr = Expr::pow(
+            Expr::number(r.clone()),
+            Expr::number(Number::rational(1, q as i64)?),
+        );
+        let id = root_atom(expr, Poly::constant(r), q);
+        Some(Rf::atom(id).scale(&scale))
+    }
+
+    fn function(&mut self, f: Func, args: &[Expr]) -> Rf {
+        let normal_args: Vec<Rf> = args.iter().map(|a| self.rf(*a)).collect();
+        match (f, normal_args.as_slice()) {
+            (Func::Sin, [a]) => self.trig(a).1,
+            (Func::Cos, [a]) => self.trig(a).0,
+            (Func::Tan, [a]) => {
+                let (c, s) = self.trig(a);
+                s.div(&c)
+                    .unwrap_or_else(|| self.opaque(Expr::func(Func::Tan, vec![a.to_expr()])))
+            }
+            (Func::Exp, [a]) => self.exponential(a),
+            (Func::Ln, [a]) => {
+                // ln(exp(u)) = u for real u.
+                let e = a.to_expr();
+                if let Node::Func(Func::Exp, inner) = e.node() {
+                    return self.rf(inner[0]);
+                }
+                if let Some(c) = a.as_constant() {
+                    if c.is_float() && c.signum() > 0 {
+                        return Rf::constant(Number::Float(c.to_f64().ln()));
+                    }
+                }
+                self.opaque(Expr::func(Func::Ln, vec![e]))
+            }
+            (Func::Abs | Func::Sign, [a]) => {
+                if let Some(c) = a.as_constant() {
+                    return Rf::constant(if f == Func::Abs {
+                        c.abs()
+                    } else {
+                        Number::int(c.signum() as i64)
+                    });
+                }
+                // |−u| = |u|, sign(−u) = −sign(u): choose the sign of the argument so that its
+                // leading term is positive.
+                let flip = self.negative_lead(a);
+                let arg = if flip { a.neg() } else { a.clone() };
+                let r = self.opaque(Expr::func(f, vec![arg.to_expr()]));
+                if flip && f == Func::Sign {
+                    r.neg()
+                } else {
+                    r
+                }
+            }
+            _ => {
+                let constants: Option<Vec<f64>> = normal_args
+                    .iter()
+                    .map(|a| a.as_constant().filter(|c| c.is_float()).map(|c| c.to_f64()))
+                    .collect();
+                if let Some(v) = constants {
+                    if let Some(x) = eval_float(f, &v) {
+                        return Rf::constant(Number::Float(x));
+                    }
+                }
+                let e = Expr::func(f, normal_args.iter().map(|a| a.to_expr()).collect());
+                match e.node() {
+                    Node::Func(..) => self.opaque(e),
+                    _ => self.rf(e),
+                }
+            }
+        }
+    }
+
+    fn negative_lead(&self, a: &Rf) -> bool {
+        a.num
+            .terms
+            .iter()
+            .max_by(|x, y| monomial_to_expr(&x.0).cmp_structure(monomial_to_expr(&y.0)))
+            .is_some_and(|(_, c)| c.is_negative())
+    }
+
+    /// `(cos a, sin a)` of a normalised angle, expanded over the terms of the angle.
+    pub(crate) fn trig(&mut self, angle: &Rf) -> (Rf, Rf) {
+        let mut cos = Rf::one();
+        let mut sin = Rf::zero();
+        let den = angle.den.clone();
+        let den_expr = if den.is_one() {
+            None
+        } else {
+            Some(poly_to_expr(&den))
+        };
+        for (m, c) in &angle.num.terms {
+            let (ct, st) = self.trig_of_term(m, c, den_expr);
+            let new_cos = cos.mul(&ct).sub(&sin.mul(&st));
+            let new_sin = sin.mul(&ct).add(&cos.mul(&st));
+            cos = new_cos;
+            sin = new_sin;
+        }
+        (cos, sin)
+    }
+
+    /// `(cos, sin)` of one term `c m / den` of an angle.
+    fn trig_of_term(&mut self, m: &Monomial, c: &Number, den: Option<Expr>) -> (Rf, Rf) {
+        let unit = match den {
+            Some(d) => monomial_to_expr(m) * d.powi(-1),
+            None => monomial_to_expr(m),
+        };
+        if c.is_float() {
+            if m.is_empty() && den.is_none() {
+                let x = c.to_f64();
+                return (
+                    Rf::constant(Number::Float(x.cos())),
+                    Rf::constant(Number::Float(x.sin())),
+                );
+            }
+            let (s, k) = trig_atoms(Expr::number(c.clone()) * unit);
+            return (Rf::atom(k), Rf::atom(s));
+        }
+        let is_pi = unit == Expr::pi();
+        let (n, q) = c.to_small_ratio().unwrap_or((1, 1));
+        if is_pi {
+            if let Some(exact) = exact_trig_of_pi_multiple(self, n, q) {
+                return exact;
+            }
+        }
+        // c = n/q: the angle unit is m/q, taken `n` times.
+        let (angle_unit, multiple) = if q == 1 {
+            (unit, n)
+        } else if c.to_small_ratio().is_some() {
+            (unit * Expr::rational(1, q).unwrap_or_else(Expr::one), n)
+        } else {
+            (Expr::number(c.clone()) * unit, 1)
+        };
+        let (s_id, c_id) = trig_atoms(angle_unit);
+        let base_cos = Rf::atom(c_id);
+        let base_sin = Rf::atom(s_id);
+        multiple_angle(&base_cos, &base_sin, multiple)
+    }
+
+    /// `exp` of a normalised argument: `exp(Σ c_k m_k) = Π exp(m_k)^c_k` for integer `c_k`.
+    fn exponential(&mut self, a: &Rf) -> Rf {
+        if let Some(c) = a.as_constant() {
+            if c.is_float() {
+                return Rf::constant(Number::Float(c.to_f64().exp()));
+            }
+        }
+        if !a.den.is_one() {
+            return self.opaque(Expr::func(Func::Exp, vec![a.to_expr()]));
+        }
+        let mut acc = Rf::one();
+        for (m, c) in &a.num.terms {
+            let unit = monomial_to_expr(m);
+            let r = match c.to_i64() {
+                Some(k) if !m.is_empty() => {
+                    let atom = Rf::atom(plain_atom(Expr::func(Func::Exp, vec![unit])));
+                    atom.powi(k).unwrap_or_else(Rf::one)
+                }
+                _ => {
+                    let e = Expr::number(c.clone()) * unit;
+                    Rf::atom(plain_atom(Expr::func(Func::Exp, vec![e])))
+                }
+            };
+            acc = acc.mul(&r);
+        }
+        acc
+    }
+}
+
+/// `(cos nθ, sin nθ)` from `(cos θ, sin θ)` by binary powering of `cos θ + i sin θ`.
+fn multiple_angle(c: &Rf, s: &Rf, n: i64) -> (Rf, Rf) {
+    let (mut bc, mut bs) = (c.clone(), if n < 0 { s.neg() } else { s.clone() });
+    let mut k = n.unsigned_abs();
+    let (mut rc, mut rs) = (Rf::one(), Rf::zero());
+    while k > 0 {
+        if k & 1 == 1 {
+            let nc = rc.mul(&bc).sub(&rs.mul(&bs));
+            let ns = rs.mul(&bc).add(&rc.mul(&bs));
+            rc = nc;
+            rs = ns;
+        }
+        k >>= 1;
+        if k > 0 {
+            let nc = bc.mul(&bc).sub(&bs.mul(&bs));
+            let ns = bs.mul(&bc).scale(&Number::int(2));
+            bc = nc;
+            bs = ns;
+        }
+    }
+    (rc, rs)
+}
+
+/// Exact `(cos, sin)` of `n π / q` for `q` dividing 12 (multiples of π/6 and π/4).
+fn exact_trig_of_pi_multiple(nz: &mut Normalizer, n: i64, q: i64) -> Option<(Rf, Rf)> {
+    if 12 % q != 0 {
+        return None;
+    }
+    // Angle in twelfths of π, reduced to [0, 24).
+    let k = (n.checked_mul(12 / q)?).rem_euclid(24);
+    let half = Number::rational(1, 2)?;
+    let sqrt = |nz: &mut Normalizer, v: i64| nz.root_of_number(&Number::int(v), 2);
+    let s3_2 = sqrt(nz, 3)?.scale(&half);
+    let s2_2 = sqrt(nz, 2)?.scale(&half);
+    let h = Rf::constant(half.clone());
+    let table = |k: i64| -> Option<(Rf, Rf)> {
+        Some(match k {
+            0 => (Rf::one(), Rf::zero()),
+            2 => (s3_2.clone(), h.clone()),
+            3 => (s2_2.clone(), s2_2.clone()),
+            4 => (h.clone(), s3_2.clone()),
+            6 => (Rf::zero(), Rf::one()),
+            _ => return None,
+        })
+    };
+    // Use symmetries to bring k into [0, 6].
+    let (kk, cos_sign, sin_sign) = match k {
+        0..=6 => (k, 1, 1),
+        7..=12 => (12 - k, -1, 1),
+        13..=18 => (k - 12, -1, -1),
+        _ => (24 - k, 1, -1),
+    };
+    let (c, s) = table(kk)?;
+    let c = if cos_sign < 0 { c.neg() } else { c };
+    let s = if sin_sign < 0 { s.neg() } else { s };
+    Some((c, s))
+}
+
+/// Numeric values of the functions at float arguments.
+pub(crate) fn eval_float(f: Func, args: &[f64]) -> Option<f64> {
+    let v = match (f, args) {
+        (Func::Sin, [x]) => x.sin(),
+        (Func::Cos, [x]) => x.cos(),
+        (Func::Tan, [x]) => x.tan(),
+        (Func::Asin, [x]) => x.asin(),
+        (Func::Acos, [x]) => x.acos(),
+        (Func::Atan, [x]) => x.atan(),
+        (Func::Atan2, [y, x]) => y.atan2(*x),
+        (Func::Exp, [x]) => x.exp(),
+        (Func::Ln, [x]) => x.ln(),
+        (Func::Abs, [x]) => x.abs(),
+        (Func::Sign, [x]) => {
+            if *x > 0.0 {
+                1.0
+            } else if *x < 0.0 {
+                -1.0
+            } else {
+                0.0
+            }
+        }
+        _ => return None,
+    };
+    v.is_finite().then_some(v)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Public entry points (through `Expr` methods).
+
+fn normal_memo() -> &'static Mutex<FxHashMap<Expr, Expr>> {
+    static MEMO: OnceLock<Mutex<FxHashMap<Expr, Expr>>> = OnceLock::new();
+    MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
+}
+
+/// The normal form of `e` as an [`Rf`].
+pub(crate) fn to_rf(e: Expr) -> Rf {
+    Normalizer::default().rf(e)
+}
+
+/// The canonical expression of a normal form, remembered as its own normal form.
+pub(crate) fn from_rf(r: &Rf) -> Expr {
+    let e = r.to_expr();
+    normal_memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert(e, e);
+    e
+}
+
+impl Expr {
+    /// The canonical normal form (see the module documentation of `normal`): equal
+    /// expressions of the mechanics class give the identical `Expr`.
+    pub fn normal(self) -> Expr {
+        if let Some(&n) = normal_memo()
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .get(&self)
+        {
+            return n;
+        }
+        let n = from_rf(&to_rf(self));
+        normal_memo()
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .insert(self, n);
+        n
+    }
+
+    /// Whether the expression is identically zero (exact for the mechanics class).
+    pub fn is_zero(self) -> bool {
+        to_rf(self).is_zero()
+    }
+
+    /// Whether two expressions are equal (exact for the mechanics class).
+    pub fn equals(self, other: Expr) -> bool {
+        self == other || (self - other).is_zero()
+    }
+
+    /// Numerator and denominator of the normal form.
+    pub fn numer_denom(self) -> (Expr, Expr) {
+        let r = to_rf(self);
+        (
+            from_rf(&Rf::from_poly(r.num.clone())),
+            from_rf(&Rf::from_poly(r.den)),
+        )
+    }
+
+    /// Whether the expression is the literal `π`.
+    pub fn is_pi(self) -> bool {
+        matches!(self.node(), Node::Constant(Constant::Pi))
+    }
+}

@@ -1,0 +1,866 @@
+//! Sparse multivariate polynomials over exact rationals in *atoms*, the working form behind the
+//! normal form.
+//!
+//! An atom is an expression the polynomial treats as a variable: a symbol, `sin(a)` or `cos(a)`
+//! of an angle `a`, a root `b^(1/q)`, or any other function application. Two rewriting rules
+//! keep the representation canonical: `sin(a)^2 = 1 - cos(a)^2` (so `sin` never appears squared)
+//! and `r^q = b` for a root `r = b^(1/q)`. With them, two equal polynomials of the class that
+//! mechanics produces have identical term lists.
+//!
+//! Terms are kept sorted by a lexicographic monomial order on atom ids (the id of an atom is its
+//! creation order, an implementation detail; printed output is ordered structurally elsewhere).
+//! The module also provides exact division, pseudo-remainders and a recursive primitive-PRS
+//! greatest common divisor, used to keep fractions in lowest terms.
+
+use std::cmp::Ordering;
+use std::sync::{Mutex, OnceLock, RwLock};
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use crate::expr::Expr;
+use crate::number::Number;
+
+/// An atom's id. The two high bits tell its kind, so the hot multiplication loop can tell
+/// whether a rewriting rule applies without a table look-up.
+pub(crate) type AtomId = u32;
+
+const KIND_SHIFT: u32 = 30;
+const KIND_PLAIN: u32 = 0;
+const KIND_SIN: u32 = 1;
+const KIND_ROOT: u32 = 2;
+const INDEX_MASK: u32 = (1 << KIND_SHIFT) - 1;
+
+/// What an atom is, for the rewriting rules and for differentiation.
+#[derive(Clone, Debug)]
+pub(crate) enum AtomKind {
+    /// A variable with no rewriting rule.
+    Plain,
+    /// `sin(angle)`; `cos` is its partner for `sin² = 1 − cos²`.
+    Sin { angle: Expr, cos: AtomId },
+    /// `cos(angle)`.
+    Cos { angle: Expr, sin: AtomId },
+    /// `base^(1/q)` with `q ≥ 2`; `base` is a polynomial.
+    Root { base: Poly, q: u32 },
+}
+
+#[derive(Clone, Debug)]
+pub(crate) struct AtomInfo {
+    pub(crate) expr: Expr,
+    pub(crate) kind: AtomKind,
+}
+
+struct AtomTable {
+    by_expr: FxHashMap<Expr, AtomId>,
+    infos: Vec<AtomInfo>,
+}
+
+fn atom_table() -> &'static RwLock<AtomTable> {
+    static TABLE: OnceLock<RwLock<AtomTable>> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        RwLock::new(AtomTable {
+            by_expr: FxHashMap::default(),
+            infos: Vec::new(),
+        })
+    })
+}
+
+/// Serialises atom creation so that a `sin`/`cos` pair is made together.
+fn creation_lock() -> &'static Mutex<()> {
+    static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
+    LOCK.get_or_init(|| Mutex::new(()))
+}
+
+fn read_table() -> std::sync::RwLockReadGuard<'static, AtomTable> {
+    atom_table().read().unwrap_or_else(|e| e.into_inner())
+}
+
+fn push_atom(table: &mut AtomTable, info: AtomInfo, kind_bits: u32) -> AtomId {
+    let id = (table.infos.len() as u32) | (kind_bits << KIND_SHIFT);
+    table.by_expr.insert(info.expr, id);
+    table.infos.push(info);
+    id
+}
+
+/// The atom for a plain variable (a symbol, a constant, an opaque function application).
+pub(crate) fn plain_atom(expr: Expr) -> AtomId {
+    if let Some(&id) = read_table().by_expr.get(&expr) {
+        return id;
+    }
+    let _g = creation_lock().lock().unwrap_or_else(|e| e.into_inner());
+    let mut t = atom_table().write().unwrap_or_else(|e| e.into_inner());
+    if let Some(&id) = t.by_expr.get(&expr) {
+        return id;
+    }
+    push_atom(
+        &mut t,
+        AtomInfo {
+            expr,
+            kind: AtomKind::Plain,
+        },
+        KIND_PLAIN,
+    )
+}
+
+/// The atoms `(sin(angle), cos(angle))`.
+pub(crate) fn trig_atoms(angle: Expr) -> (AtomId, AtomId) {
+    let sin_expr = angle.sin();
+    let cos_expr = angle.cos();
+    {
+        let t = read_table();
+        if let (Some(&s), Some(&c)) = (t.by_expr.get(&sin_expr), t.by_expr.get(&cos_expr)) {
+            return (s, c);
+        }
+    }
+    let _g = creation_lock().lock().unwrap_or_else(|e| e.into_inner());
+    let mut t = atom_table().write().unwrap_or_else(|e| e.into_inner());
+    if let (Some(&s), Some(&c)) = (t.by_expr.get(&sin_expr), t.by_expr.get(&cos_expr)) {
+        return (s, c);
+    }
+    let next = t.infos.len() as u32;
+    let sin_id = next | (KIND_SIN << KIND_SHIFT);
+    let cos_id = next + 1;
+    push_atom(
+        &mut t,
+        AtomInfo {
+            expr: sin_expr,
+            kind: AtomKind::Sin { angle, cos: cos_id },
+        },
+        KIND_SIN,
+    );
+    push_atom(
+        &mut t,
+        AtomInfo {
+            expr: cos_expr,
+            kind: AtomKind::Cos { angle, sin: sin_id },
+        },
+        KIND_PLAIN,
+    );
+    (sin_id, cos_id)
+}
+
+/// The atom `base^(1/q)` whose expression is `expr`.
+pub(crate) fn root_atom(expr: Expr, base: Poly, q: u32) -> AtomId {
+    if let Some(&id) = read_table().by_expr.get(&expr) {
+        return id;
+    }
+    let _g = creation_lock().lock().unwrap_or_else(|e| e.into_inner());
+    let mut t = atom_table().write().unwrap_or_else(|e| e.into_inner());
+    if let Some(&id) = t.by_expr.get(&expr) {
+        return id;
+    }
+    push_atom(
+        &mut t,
+        AtomInfo {
+            expr,
+            kind: AtomKind::Root { base, q },
+        },
+        KIND_ROOT,
+    )
+}
+
+/// The information about an atom.
+pub(crate) fn atom_info(id: AtomId) -> AtomInfo {
+    read_table().infos[(id & INDEX_MASK) as usize].clone()
+}
+
+/// The expression of an atom.
+pub(crate) fn atom_expr(id: AtomId) -> Expr {
+    read_table().infos[(id & INDEX_MASK) as usize].expr
+}
+
+fn needs_rewrite(id: AtomId, exp: u32) -> bool {
+    match id >> KIND_SHIFT {
+        KIND_SIN => exp >= 2,
+        KIND_ROOT => exp >= 2, // checked against q on the slow path
+        _ => false,
+    }
+}
+
+/// A monomial: `(atom, exponent)` pairs sorted by atom id, exponents positive.
+pub(crate) type Monomial = SmallVec<[(AtomId, u32); 4]>;
+
+/// A sparse polynomial: terms sorted by decreasing monomial (lexicographic on atom ids, the
+/// smallest id most significant), no zero coefficients.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
+pub(crate) struct Poly {
+    pub(crate) terms: Vec<(Monomial, Number)>,
+}
+
+/// Lexicographic comparison of sparse exponent vectors (the smallest atom id is the most
+/// significant variable).
+pub(crate) fn cmp_monomial(a: &Monomial, b: &Monomial) -> Ordering {
+    let mut i = 0;
+    loop {
+        match (a.get(i), b.get(i)) {
+            (None, None) => return Ordering::Equal,
+            (Some(_), None) => return Ordering::Greater,
+            (None, Some(_)) => return Ordering::Less,
+            (Some(&(xa, ea)), Some(&(xb, eb))) => {
+                if xa != xb {
+                    // The one holding the smaller (more significant) atom is larger.
+                    return if (xa & INDEX_MASK) < (xb & INDEX_MASK) {
+                        Ordering::Greater
+                    } else {
+                        Ordering::Less
+                    };
+                }
+                if ea != eb {
+                    return ea.cmp(&eb);
+                }
+            }
+        }
+        i += 1;
+    }
+}
+
+fn key(id: AtomId) -> u32 {
+    id & INDEX_MASK
+}
+
+fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
+    let mut out = Monomial::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        let (xa, ea) = a[i];
+        let (xb, eb) = b[j];
+        match key(xa).cmp(&key(xb)) {
+            Ordering::Less => {
+                out.push((xa, ea));
+                i += 1;
+            }
+            Ordering::Greater => {
+                out.push((xb, eb));
+                j += 1;
+            }
+            Ordering::Equal => {
+                out.push((xa, ea + eb));
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+    out
+}
+
+/// `a / b` when every exponent of `b` is at most the one in `a`.
+fn div_monomials(a: &Monomial, b: &Monomial) -> Option<Monomial> {
+    let mut out = Monomial::with_capacity(a.len());
+    let mut j = 0;
+    for &(x, e) in a {
+        if j < b.len() && b[j].0 == x {
+            let f = b[j].1;
+            if f > e {
+                return None;
+            }
+            if e > f {
+                out.push((x, e - f));
+            }
+            j += 1;
+        } else if j < b.len() && key(b[j].0) < key(x) {
+            return None;
+        } else {
+            out.push((x, e));
+        }
+    }
+    (j == b.len()).then_some(out)
+}
+
+fn degree_in(m: &Monomial, x: AtomId) -> u32 {
+    m.iter().find(|(a, _)| *a == x).map_or(0, |(_, e)| *e)
+}
+
+impl Poly {
+    /// The zero polynomial.
+    pub(crate) fn zero() -> Poly {
+        Poly { terms: Vec::new() }
+    }
+
+    /// A constant.
+    pub(crate) fn constant(c: Number) -> Poly {
+        if c.is_exact_zero() {
+            Poly::zero()
+        } else {
+            Poly {
+                terms: vec![(Monomial::new(), c)],
+            }
+        }
+    }
+
+    /// One.
+    pub(crate) fn one() -> Poly {
+        Poly::constant(Number::ONE)
+    }
+
+    /// A single atom.
+    pub(crate) fn atom(id: AtomId) -> Poly {
+        let mut m = Monomial::new();
+        m.push((id, 1));
+        Poly {
+            terms: vec![(m, Number::ONE)],
+        }
+    }
+
+    /// `atom^k`, with the rewriting rules applied.
+    pub(crate) fn atom_pow(id: AtomId, k: u32) -> Poly {
+        if k == 0 {
+            return Poly::one();
+        }
+        let mut m = Monomial::new();
+        m.push((id, k));
+        if needs_rewrite(id, k) {
+            rewrite_term(m, Number::ONE)
+        } else {
+            Poly {
+                terms: vec![(m, Number::ONE)],
+            }
+        }
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The constant value when the polynomial has no atoms.
+    pub(crate) fn as_constant(&self) -> Option<Number> {
+        match self.terms.as_slice() {
+            [] => Some(Number::ZERO),
+            [(m, c)] if m.is_empty() => Some(c.clone()),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn is_one(&self) -> bool {
+        matches!(self.terms.as_slice(), [(m, c)] if m.is_empty() && c.is_exact_one())
+    }
+
+    /// Sorts and merges an unordered list of terms.
+    pub(crate) fn from_terms(mut terms: Vec<(Monomial, Number)>) -> Poly {
+        terms.sort_by(|a, b| cmp_monomial(&b.0, &a.0));
+        let mut out: Vec<(Monomial, Number)> = Vec::with_capacity(terms.len());
+        for (m, c) in terms {
+            match out.last_mut() {
+                Some((lm, lc)) if *lm == m => *lc = lc.add(&c),
+                _ => out.push((m, c)),
+            }
+        }
+        out.retain(|(_, c)| !c.is_exact_zero());
+        Poly { terms: out }
+    }
+
+    pub(crate) fn add(&self, other: &Poly) -> Poly {
+        if self.is_zero() {
+            return other.clone();
+        }
+        if other.is_zero() {
+            return self.clone();
+        }
+        let mut out = Vec::with_capacity(self.terms.len() + other.terms.len());
+        let (mut i, mut j) = (0, 0);
+        let (a, b) = (&self.terms, &other.terms);
+        while i < a.len() && j < b.len() {
+            match cmp_monomial(&a[i].0, &b[j].0) {
+                Ordering::Greater => {
+                    out.push(a[i].clone());
+                    i += 1;
+                }
+                Ordering::Less => {
+                    out.push(b[j].clone());
+                    j += 1;
+                }
+                Ordering::Equal => {
+                    let c = a[i].1.add(&b[j].1);
+                    if !c.is_exact_zero() {
+                        out.push((a[i].0.clone(), c));
+                    }
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Poly { terms: out }
+    }
+
+    pub(crate) fn neg(&self) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| (m.clone(), c.neg()))
+                .collect(),
+        }
+    }
+
+    pub(crate) fn sub(&self, other: &Poly) -> Poly {
+        self.add(&other.neg())
+    }
+
+    pub(crate) fn scale(&self, c: &Number) -> Poly {
+        if c.is_exact_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, k)| (m.clone(), k.mul(c)))
+                .collect(),
+        }
+    }
+
+    /// The product with the rewriting rules (`sin² = 1 − cos²`, `r^q = b`) applied.
+    pub(crate) fn mul(&self, other: &Poly) -> Poly {
+        self.mul_with(other, true)
+    }
+
+    /// The product treating every atom as an independent variable (for GCD computations).
+    pub(crate) fn mul_raw(&self, other: &Poly) -> Poly {
+        self.mul_with(other, false)
+    }
+
+    fn mul_with(&self, other: &Poly, rewrite: bool) -> Poly {
+        if self.is_zero() || other.is_zero() {
+            return Poly::zero();
+        }
+        if let Some(c) = self.as_constant() {
+            return other.scale(&c);
+        }
+        if let Some(c) = other.as_constant() {
+            return self.scale(&c);
+        }
+        let (small, large) = if self.terms.len() <= other.terms.len() {
+            (self, other)
+        } else {
+            (other, self)
+        };
+        let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
+        acc.reserve(small.terms.len() * large.terms.len());
+        let mut extra: Vec<Poly> = Vec::new();
+        for (ma, ca) in &small.terms {
+            for (mb, cb) in &large.terms {
+                let m = mul_monomials(ma, mb);
+                let c = ca.mul(cb);
+                if rewrite && m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
+                    extra.push(rewrite_term(m, c));
+                    continue;
+                }
+                match acc.get_mut(&m) {
+                    Some(v) => *v = v.add(&c),
+                    None => {
+                        acc.insert(m, c);
+                    }
+                }
+            }
+        }
+        let mut p = Poly::from_terms(acc.into_iter().collect());
+        for e in extra {
+            p = p.add(&e);
+        }
+        p
+    }
+
+    /// `self^k`.
+    pub(crate) fn pow(&self, k: u32) -> Poly {
+        let mut result = Poly::one();
+        let mut base = self.clone();
+        let mut e = k;
+        while e > 0 {
+            if e & 1 == 1 {
+                result = result.mul(&base);
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.mul(&base);
+            }
+        }
+        result
+    }
+
+    /// The atoms that occur, sorted by id.
+    pub(crate) fn atoms(&self) -> Vec<AtomId> {
+        let mut v: Vec<AtomId> = self
+            .terms
+            .iter()
+            .flat_map(|(m, _)| m.iter().map(|(x, _)| *x))
+            .collect();
+        v.sort_unstable_by_key(|x| key(*x));
+        v.dedup();
+        v
+    }
+
+    pub(crate) fn contains_atom(&self, x: AtomId) -> bool {
+        self.terms
+            .iter()
+            .any(|(m, _)| m.iter().any(|(a, _)| *a == x))
+    }
+
+    pub(crate) fn degree(&self, x: AtomId) -> u32 {
+        self.terms
+            .iter()
+            .map(|(m, _)| degree_in(m, x))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// The coefficients in `x`: `self = Σ c_k x^k`, as `(k, c_k)` with `c_k` free of `x`.
+    pub(crate) fn coefficients_in(&self, x: AtomId) -> Vec<(u32, Poly)> {
+        let mut by_degree: FxHashMap<u32, Vec<(Monomial, Number)>> = FxHashMap::default();
+        for (m, c) in &self.terms {
+            let d = degree_in(m, x);
+            let rest: Monomial = m.iter().filter(|(a, _)| *a != x).copied().collect();
+            by_degree.entry(d).or_default().push((rest, c.clone()));
+        }
+        let mut v: Vec<(u32, Poly)> = by_degree
+            .into_iter()
+            .map(|(d, t)| (d, Poly::from_terms(t)))
+            .collect();
+        v.sort_by_key(|(d, _)| std::cmp::Reverse(*d));
+        v
+    }
+
+    /// The leading coefficient in `x` (the coefficient of its highest power).
+    fn leading_coefficient_in(&self, x: AtomId) -> (u32, Poly) {
+        self.coefficients_in(x)
+            .into_iter()
+            .next()
+            .unwrap_or((0, Poly::zero()))
+    }
+
+    /// `self * x^k`.
+    fn shift(&self, x: AtomId, k: u32) -> Poly {
+        if k == 0 {
+            return self.clone();
+        }
+        let mut xm = Monomial::new();
+        xm.push((x, k));
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| (mul_monomials(m, &xm), c.clone()))
+                .collect(),
+        }
+    }
+
+    /// The exact quotient `self / divisor`, or `None` when the division leaves a remainder.
+    pub(crate) fn div_exact(&self, divisor: &Poly) -> Option<Poly> {
+        if divisor.is_zero() {
+            return None;
+        }
+        if let Some(c) = divisor.as_constant() {
+            return Some(self.scale(&c.recip()?));
+        }
+        let (lead_m, lead_c) = divisor.terms.first()?;
+        let lead_inv = lead_c.recip()?;
+        let mut rem = self.clone();
+        let mut quotient: Vec<(Monomial, Number)> = Vec::new();
+        let mut guard = 0usize;
+        while let Some((m, c)) = rem.terms.first().cloned() {
+            let qm = div_monomials(&m, lead_m)?;
+            let qc = c.mul(&lead_inv);
+            let term = Poly {
+                terms: vec![(qm.clone(), qc.clone())],
+            };
+            rem = rem.sub(&divisor.mul_raw(&term));
+            quotient.push((qm, qc));
+            guard += 1;
+            if guard > 1_000_000 {
+                return None;
+            }
+        }
+        Some(Poly::from_terms(quotient))
+    }
+
+    /// The greatest common divisor of the monomials of `self` and `other` (no coefficient).
+    fn monomial_gcd_with(&self, mut g: Monomial) -> Monomial {
+        for (m, _) in &self.terms {
+            g.retain(|(x, e)| {
+                let d = degree_in(m, *x);
+                *e = (*e).min(d);
+                *e > 0
+            });
+            if g.is_empty() {
+                break;
+            }
+        }
+        g
+    }
+
+    /// The rational content (gcd of the coefficients) with the sign of the leading term, so
+    /// that `self / content` has integer coefficients with gcd 1 and a positive leading one.
+    pub(crate) fn content(&self) -> Number {
+        let mut g = Number::ZERO;
+        for (_, c) in &self.terms {
+            if c.is_float() {
+                return Number::ONE;
+            }
+            g = g.gcd(c);
+        }
+        if g.is_zero() {
+            return Number::ONE;
+        }
+        match self.terms.first() {
+            Some((_, c)) if c.is_negative() => g.neg(),
+            _ => g,
+        }
+    }
+
+    /// `self` divided by its content.
+    pub(crate) fn primitive(&self) -> Poly {
+        let c = self.content();
+        match c.recip() {
+            Some(r) if !c.is_one() => self.scale(&r),
+            _ => self.clone(),
+        }
+    }
+}
+
+/// Applies `sin² = 1 − cos²` and `r^q = b` to one term.
+fn rewrite_term(m: Monomial, c: Number) -> Poly {
+    let mut plain = Monomial::new();
+    let mut factors: Vec<Poly> = Vec::new();
+    for &(x, e) in &m {
+        match x >> KIND_SHIFT {
+            KIND_SIN if e >= 2 => {
+                let cos = match atom_info(x).kind {
+                    AtomKind::Sin { cos, .. } => cos,
+                    _ => unreachable!("an id with the sin bit is a sin atom"),
+                };
+                // sin^e = sin^(e mod 2) (1 − cos²)^(e div 2)
+                if e % 2 == 1 {
+                    plain.push((x, 1));
+                }
+                let one_minus_cos2 = Poly::one().sub(&Poly::atom_pow(cos, 2));
+                factors.push(one_minus_cos2.pow(e / 2));
+            }
+            KIND_ROOT => {
+                let (base, q) = match atom_info(x).kind {
+                    AtomKind::Root { base, q } => (base, q),
+                    _ => unreachable!("an id with the root bit is a root atom"),
+                };
+                if e % q != 0 {
+                    plain.push((x, e % q));
+                }
+                if e >= q {
+                    factors.push(base.pow(e / q));
+                }
+            }
+            _ => plain.push((x, e)),
+        }
+    }
+    let mut p = Poly {
+        terms: vec![(plain, c)],
+    };
+    for f in factors {
+        p = p.mul(&f);
+    }
+    p
+}
+
+/// The greatest common divisor of two polynomials (atoms as independent variables), made
+/// primitive with a positive leading coefficient. `gcd(0, 0) = 0`.
+pub(crate) fn gcd(a: &Poly, b: &Poly) -> Poly {
+    if a.is_zero() {
+        return b.primitive();
+    }
+    if b.is_zero() {
+        return a.primitive();
+    }
+    if a.as_constant().is_some() || b.as_constant().is_some() {
+        return Poly::one();
+    }
+    if a.terms.iter().chain(&b.terms).any(|(_, c)| c.is_float()) {
+        // Floats have no exact gcd; only cancel common monomials.
+        let g = b.monomial_gcd_with(a.monomial_gcd_with(a.terms[0].0.clone()));
+        return Poly {
+            terms: vec![(g, Number::ONE)],
+        };
+    }
+    // Pull out the common monomial factor first: it is cheap and the usual case.
+    let start = a.terms[0].0.clone();
+    let mono = b.monomial_gcd_with(a.monomial_gcd_with(start));
+    let (a, b) = if mono.is_empty() {
+        (a.clone(), b.clone())
+    } else {
+        let m = Poly {
+            terms: vec![(mono.clone(), Number::ONE)],
+        };
+        (
+            a.div_exact(&m).unwrap_or_else(|| a.clone()),
+            b.div_exact(&m).unwrap_or_else(|| b.clone()),
+        )
+    };
+    let g = gcd_monomial_free(&a, &b, 0);
+    let mono_poly = Poly {
+        terms: vec![(mono, Number::ONE)],
+    };
+    g.mul_raw(&mono_poly).primitive()
+}
+
+fn gcd_monomial_free(a: &Poly, b: &Poly, depth: usize) -> Poly {
+    if a.is_zero() {
+        return b.primitive();
+    }
+    if b.is_zero() {
+        return a.primitive();
+    }
+    if a.as_constant().is_some() || b.as_constant().is_some() || depth > 64 {
+        return Poly::one();
+    }
+    if a.terms.len() == 1 || b.terms.len() == 1 {
+        // A monomial and a polynomial share only monomial factors, and `gcd` removed the
+        // common monomial before calling here.
+        return Poly::one();
+    }
+    // Fast path: one divides the other.
+    if a.terms.len() <= b.terms.len() {
+        if b.div_exact(a).is_some() {
+            return a.primitive();
+        }
+    } else if a.div_exact(b).is_some() {
+        return b.primitive();
+    }
+    let va = a.atoms();
+    let vb = b.atoms();
+    // A variable in only one of them: the gcd divides every coefficient in that variable.
+    if let Some(&x) = va.iter().find(|x| !vb.contains(x)) {
+        let mut g = b.clone();
+        for (_, c) in a.coefficients_in(x) {
+            g = gcd(&g, &c);
+            if g.as_constant().is_some() {
+                return Poly::one();
+            }
+        }
+        return g;
+    }
+    if let Some(&x) = vb.iter().find(|x| !va.contains(x)) {
+        let mut g = a.clone();
+        for (_, c) in b.coefficients_in(x) {
+            g = gcd(&g, &c);
+            if g.as_constant().is_some() {
+                return Poly::one();
+            }
+        }
+        return g;
+    }
+    // Main variable: the one of least degree keeps the remainder sequence short.
+    let x = *va
+        .iter()
+        .min_by_key(|x| a.degree(**x).max(b.degree(**x)))
+        .expect("non-constant polynomials have atoms");
+    let content_a = content_in(a, x, depth);
+    let content_b = content_in(b, x, depth);
+    let content = gcd(&content_a, &content_b);
+    let mut p = a.div_exact(&content_a).unwrap_or_else(|| a.clone());
+    let mut q = b.div_exact(&content_b).unwrap_or_else(|| b.clone());
+    if p.degree(x) < q.degree(x) {
+        std::mem::swap(&mut p, &mut q);
+    }
+    let mut steps = 0;
+    while !q.is_zero() {
+        let r = pseudo_remainder(&p, &q, x);
+        p = q;
+        q = if r.is_zero() {
+            r
+        } else {
+            primitive_in(&r, x, depth)
+        };
+        steps += 1;
+        if steps > 200 {
+            return content;
+        }
+    }
+    let last = if p.degree(x) == 0 {
+        Poly::one()
+    } else {
+        primitive_in(&p, x, depth)
+    };
+    content.mul_raw(&last).primitive()
+}
+
+/// The gcd of the coefficients of `p` in `x`.
+fn content_in(p: &Poly, x: AtomId, depth: usize) -> Poly {
+    let mut g = Poly::zero();
+    for (_, c) in p.coefficients_in(x) {
+        g = if g.is_zero() {
+            c.primitive()
+        } else {
+            gcd_monomial_free_full(&g, &c, depth + 1)
+        };
+        if g.as_constant().is_some() {
+            return Poly::one();
+        }
+    }
+    g
+}
+
+fn gcd_monomial_free_full(a: &Poly, b: &Poly, _depth: usize) -> Poly {
+    gcd(a, b)
+}
+
+fn primitive_in(p: &Poly, x: AtomId, depth: usize) -> Poly {
+    let c = content_in(p, x, depth);
+    p.div_exact(&c).unwrap_or_else(|| p.clone()).primitive()
+}
+
+/// The sparse pseudo-remainder of `a` by `b` in `x`.
+fn pseudo_remainder(a: &Poly, b: &Poly, x: AtomId) -> Poly {
+    let (db, lb) = b.leading_coefficient_in(x);
+    let mut r = a.clone();
+    let mut guard = 0;
+    loop {
+        let (dr, lr) = r.leading_coefficient_in(x);
+        if r.is_zero() || dr < db {
+            return r;
+        }
+        r = r.mul_raw(&lb).sub(&b.mul_raw(&lr).shift(x, dr - db));
+        guard += 1;
+        if guard > 10_000 {
+            return r;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn var(name: &str) -> Poly {
+        Poly::atom(plain_atom(Expr::symbol(name)))
+    }
+
+    #[test]
+    fn sin_squared_is_rewritten() {
+        let th = Expr::symbol("poly_test_theta");
+        let (s, c) = trig_atoms(th);
+        let s = Poly::atom(s);
+        let c = Poly::atom(c);
+        let one = s.mul(&s).add(&c.mul(&c));
+        assert!(one.is_one());
+    }
+
+    #[test]
+    fn gcd_of_products() {
+        let x = var("px");
+        let y = var("py");
+        let a = x.add(&y).mul(&x.sub(&y)); // x² − y²
+        let b = x.add(&y).mul(&x.add(&Poly::one())); // (x + y)(x + 1)
+        let g = gcd(&a, &b);
+        assert_eq!(g, x.add(&y).primitive());
+        let h = gcd(&x.mul(&y), &y.mul(&y));
+        assert_eq!(h, y);
+    }
+
+    #[test]
+    fn exact_division() {
+        let x = var("dx");
+        let y = var("dy");
+        let a = x.add(&y).pow(3);
+        assert_eq!(a.div_exact(&x.add(&y)), Some(x.add(&y).pow(2)));
+        assert_eq!(a.div_exact(&x.sub(&y)), None);
+    }
+}

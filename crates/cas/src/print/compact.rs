@@ -1,0 +1,271 @@
+//! The compact form for people: a value-preserving regrouping of an expression, bottom-up.
+//!
+//! In every sum, three passes run in turn:
+//! 1. *trig folding* — a pair of terms `K cos a cos b ± K sin a sin b` becomes `K cos(a ∓ b)`,
+//!    and `K sin a cos b ± K cos a sin b` becomes `K sin(a ± b)` (the normal form expands these);
+//! 2. *collecting* — terms with the same time-dependent part share it:
+//!    `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`;
+//! 3. *common factors* — a numeric content and powers common to every term are pulled out:
+//!    `m_B ℓ² θ̈ + m_B g ℓ sin θ` → `m_B ℓ (ℓ θ̈ + g sin θ)`.
+//!
+//! Each pass is an identity, so the result has the value of the input (the tests check this by
+//! evaluation). The constructors keep sums inside products, so the regrouping survives as a tree.
+
+use rustc_hash::FxHashMap;
+
+use crate::expr::{split_coefficient, split_power, Expr, Node};
+use crate::number::Number;
+use crate::Func;
+
+use super::order::has_time;
+
+pub(super) fn compact(e: Expr) -> Expr {
+    Compactor {
+        memo: FxHashMap::default(),
+    }
+    .run(e)
+}
+
+struct Compactor {
+    // Shared sub-expressions are regrouped once.
+    memo: FxHashMap<Expr, Expr>,
+}
+
+impl Compactor {
+    fn run(&mut self, e: Expr) -> Expr {
+        if let Some(&r) = self.memo.get(&e) {
+            return r;
+        }
+        let r = match e.node() {
+            Node::Number(_) | Node::Symbol(_) | Node::Constant(_) => e,
+            Node::Add(terms) => {
+                let terms: Vec<Expr> = terms.iter().map(|t| self.run(*t)).collect();
+                regroup_sum(terms)
+            }
+            Node::Mul(f) => Expr::mul_all(f.iter().map(|x| self.run(*x)).collect::<Vec<_>>()),
+            Node::Pow([b, x]) => self.run(*b).pow(self.run(*x)),
+            Node::Func(f, args) => Expr::func(*f, args.iter().map(|a| self.run(*a)).collect()),
+        };
+        self.memo.insert(e, r);
+        r
+    }
+}
+
+fn regroup_sum(mut terms: Vec<Expr>) -> Expr {
+    fold_trig(&mut terms);
+    let terms = collect_by_time_part(terms);
+    pull_common_factor(terms)
+}
+
+fn factors_of(e: Expr) -> Vec<Expr> {
+    match e.node() {
+        Node::Mul(f) => f.to_vec(),
+        _ if e.is_literal_one() => Vec::new(),
+        _ => vec![e],
+    }
+}
+
+/// `sin`/`cos` of one argument, to the first power.
+fn trig(e: Expr) -> Option<(Func, Expr)> {
+    match e.node() {
+        Node::Func(f @ (Func::Sin | Func::Cos), args) => Some((*f, args[0])),
+        _ => None,
+    }
+}
+
+/// Folds pairs of terms that are an expanded `cos(a ± b)` or `sin(a ± b)`, until none is left.
+fn fold_trig(terms: &mut Vec<Expr>) {
+    // Each fold removes a term, so this terminates; the bound is a second guarantee.
+    for _ in 0..terms.len() {
+        if !fold_one(terms) {
+            return;
+        }
+    }
+}
+
+fn fold_one(terms: &mut Vec<Expr>) -> bool {
+    let split: Vec<(Number, Expr)> = terms.iter().map(|t| split_coefficient(*t)).collect();
+    let index: FxHashMap<Expr, usize> = split
+        .iter()
+        .enumerate()
+        .map(|(i, (_, rest))| (*rest, i))
+        .collect();
+    for (i, (ci, rest)) in split.iter().enumerate() {
+        let factors = factors_of(*rest);
+        for p in 0..factors.len() {
+            let Some((fp, a)) = trig(factors[p]) else {
+                continue;
+            };
+            for q in 0..factors.len() {
+                let Some((fq, b)) = trig(factors[q]) else {
+                    continue;
+                };
+                if p == q || a == b {
+                    continue;
+                }
+                // cos a cos b pairs with sin a sin b; sin a cos b pairs with cos a sin b.
+                let (pa, pb) = match (fp, fq) {
+                    (Func::Cos, Func::Cos) if p < q => (a.sin(), b.sin()),
+                    (Func::Sin, Func::Cos) => (a.cos(), b.sin()),
+                    _ => continue,
+                };
+                let others: Vec<Expr> = factors
+                    .iter()
+                    .enumerate()
+                    .filter(|&(k, _)| k != p && k != q)
+                    .map(|(_, f)| *f)
+                    .collect();
+                let partner = Expr::mul_all(others.iter().copied().chain([pa, pb]));
+                let Some(&j) = index.get(&partner) else {
+                    continue;
+                };
+                if j == i {
+                    continue;
+                }
+                let cj = &split[j].0;
+                let same = cj == ci;
+                if !same && *cj != ci.neg() {
+                    continue;
+                }
+                let folded = match (fp, same) {
+                    // cos a cos b + sin a sin b = cos(a − b); with − it is cos(a + b).
+                    (Func::Cos, true) => (a - b).cos(),
+                    (Func::Cos, false) => (a + b).cos(),
+                    // sin a cos b + cos a sin b = sin(a + b); with − it is sin(a − b).
+                    (_, true) => (a + b).sin(),
+                    (_, false) => (a - b).sin(),
+                };
+                // sin is odd: write `−K sin(b − a)` as `K sin(a − b)` with the arguments in
+                // their canonical order, as people write `sin(θ1 − θ2)`.
+                let (coefficient, folded) = match (fp, same) {
+                    (Func::Sin, false) if a.cmp_structure(b).is_gt() => (ci.neg(), (b - a).sin()),
+                    _ => (ci.clone(), folded),
+                };
+                let new = Expr::mul_all(
+                    [Expr::number(coefficient)]
+                        .into_iter()
+                        .chain(others)
+                        .chain([folded]),
+                );
+                terms[i] = new;
+                terms.remove(j);
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Collects terms that share their time-dependent factors: `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`.
+fn collect_by_time_part(terms: Vec<Expr>) -> Vec<Expr> {
+    let mut groups: Vec<(Expr, Vec<Expr>)> = Vec::new();
+    let mut slot: FxHashMap<Expr, usize> = FxHashMap::default();
+    for t in terms {
+        let (c, rest) = split_coefficient(t);
+        let (dynamic, parameters): (Vec<Expr>, Vec<Expr>) =
+            factors_of(rest).into_iter().partition(|f| has_time(*f));
+        let key = Expr::mul_all(dynamic);
+        let parameter_part = Expr::mul_all([Expr::number(c)].into_iter().chain(parameters));
+        if key.is_literal_one() {
+            groups.push((key, vec![t]));
+            continue;
+        }
+        match slot.get(&key) {
+            Some(&k) => groups[k].1.push(parameter_part),
+            None => {
+                slot.insert(key, groups.len());
+                groups.push((key, vec![parameter_part]));
+            }
+        }
+    }
+    groups
+        .into_iter()
+        .map(|(key, parts)| {
+            if key.is_literal_one() {
+                parts[0]
+            } else if parts.len() == 1 {
+                parts[0] * key
+            } else {
+                Expr::mul_all([regroup_sum(parts), key])
+            }
+        })
+        .collect()
+}
+
+/// Pulls the numeric content and the powers common to every term out of a sum.
+fn pull_common_factor(terms: Vec<Expr>) -> Expr {
+    if terms.len() < 2 {
+        return Expr::add_all(terms);
+    }
+    let split: Vec<(Number, Vec<Expr>)> = terms
+        .iter()
+        .map(|t| {
+            let (c, rest) = split_coefficient(*t);
+            (c, factors_of(rest))
+        })
+        .collect();
+
+    // The numeric content: the gcd of exact coefficients, negative when every term is.
+    let exact = split.iter().all(|(c, _)| !c.is_float());
+    let mut content = Number::ONE;
+    if exact {
+        content = split
+            .iter()
+            .skip(1)
+            .fold(split[0].0.abs(), |g, (c, _)| g.gcd(c));
+        if content.is_zero() {
+            content = Number::ONE;
+        }
+    }
+
+    // Powers common to every term, with exact exponents of one sign: the smallest in size.
+    let mut common: Vec<(Expr, Number)> = Vec::new();
+    for f in &split[0].1 {
+        let (base, exp) = split_power(*f);
+        let Some(e0) = exp.as_number().filter(|n| !n.is_float()) else {
+            continue;
+        };
+        let mut best = e0.clone();
+        let ok = split[1..].iter().all(|(_, fs)| {
+            fs.iter().any(|g| {
+                let (b, x) = split_power(*g);
+                match x.as_number() {
+                    Some(n) if b == base && !n.is_float() && n.signum() == e0.signum() => {
+                        if n.abs().total_cmp(&best.abs()).is_lt() {
+                            best = n.clone();
+                        }
+                        true
+                    }
+                    _ => false,
+                }
+            })
+        });
+        if ok {
+            common.push((base, best));
+        }
+    }
+    let all_negative = split.iter().all(|(c, _)| c.is_negative());
+    if content.is_one() && common.is_empty() {
+        return Expr::add_all(terms);
+    }
+    if all_negative {
+        content = content.neg();
+    }
+    let divisor: Vec<Expr> = std::iter::once(Expr::number(content.clone()))
+        .chain(common.iter().map(|(b, e)| b.pow(Expr::number(e.clone()))))
+        .collect();
+    let Some(inverse) = content.recip() else {
+        return Expr::add_all(terms);
+    };
+    let inner: Vec<Expr> = terms
+        .iter()
+        .map(|t| {
+            Expr::mul_all(
+                [*t, Expr::number(inverse.clone())]
+                    .into_iter()
+                    .chain(common.iter().map(|(b, e)| b.pow(Expr::number(e.neg())))),
+            )
+        })
+        .collect();
+    Expr::mul_all(divisor.into_iter().chain([Expr::add_all(inner)]))
+}

@@ -1,0 +1,3 @@
+//! Shared test models of the symbolic core.
+
+pub mod nlink;

@@ -1,0 +1,157 @@
+//! Known identities normalise to exactly zero, and near-identities (off by a little) do not.
+//! One line per identity.
+
+use cas::Expr;
+
+fn s(name: &str) -> Expr {
+    Expr::symbol(name)
+}
+
+fn q(name: &str) -> Expr {
+    Expr::coordinate(name)
+}
+
+fn identities() -> Vec<(&'static str, Expr, Expr)> {
+    let (x, y, z) = (s("x"), s("y"), s("z"));
+    let (a, b) = (q("alpha"), q("beta"));
+    let (m, l, r) = (s("m"), s("l"), s("R"));
+    let half = Expr::rational(1, 2).unwrap();
+    vec![
+        ("pythagoras", a.sin().powi(2) + a.cos().powi(2), Expr::one()),
+        (
+            "sin of a sum",
+            (a + b).sin(),
+            a.sin() * b.cos() + a.cos() * b.sin(),
+        ),
+        (
+            "cos of a difference",
+            (a - b).cos(),
+            a.cos() * b.cos() + a.sin() * b.sin(),
+        ),
+        ("double angle sine", (2 * a).sin(), 2 * a.sin() * a.cos()),
+        (
+            "double angle cosine",
+            (2 * a).cos(),
+            1 - 2 * a.sin().powi(2),
+        ),
+        (
+            "triple angle",
+            (3 * a).sin(),
+            3 * a.sin() - 4 * a.sin().powi(3),
+        ),
+        (
+            "tan of a sum",
+            (a + b).tan(),
+            (a.tan() + b.tan()) / (1 - a.tan() * b.tan()),
+        ),
+        ("tan squared", a.tan().powi(2) + 1, a.cos().powi(-2)),
+        ("shift by pi/2", (a + Expr::pi() * half).sin(), a.cos()),
+        ("shift by pi", (a - Expr::pi()).cos(), -a.cos()),
+        ("sin pi/6", (Expr::pi() / 6).sin(), half),
+        ("cos pi/4 squared", (Expr::pi() / 4).cos().powi(2), half),
+        (
+            "sin over 1 + cos",
+            a.sin() / (1 + a.cos()),
+            (1 - a.cos()) / a.sin(),
+        ),
+        (
+            "difference of squares",
+            (x.powi(2) - y.powi(2)) / (x - y),
+            x + y,
+        ),
+        (
+            "cubes",
+            (x.powi(3) - y.powi(3)) / (x - y),
+            x.powi(2) + x * y + y.powi(2),
+        ),
+        (
+            "partial fractions",
+            Expr::one() / (x - 1) - Expr::one() / (x + 1),
+            2 / (x.powi(2) - 1),
+        ),
+        (
+            "nested fraction",
+            Expr::one() / (Expr::one() / x + Expr::one() / y),
+            x * y / (x + y),
+        ),
+        (
+            "multivariate gcd",
+            (x * y + x * z) / (y * x + x.powi(2)),
+            (y + z) / (y + x),
+        ),
+        ("parameters in denominators", m * l.powi(2) / (m * l), l),
+        ("rolling ratio", (r * a.sin() + l) / r - a.sin(), l / r),
+        (
+            "root squared",
+            (x.powi(2) + y.powi(2)).sqrt().powi(2),
+            x.powi(2) + y.powi(2),
+        ),
+        ("root of a product", (4 * x).sqrt(), 2 * x.sqrt()),
+        (
+            "rationalised root",
+            Expr::one() / (1 + Expr::int(2).sqrt()),
+            Expr::int(2).sqrt() - 1,
+        ),
+        ("over a root", x / x.sqrt(), x.sqrt()),
+        ("exp of a sum", (x + 2 * y).exp(), x.exp() * y.exp().powi(2)),
+        ("log of exp", x.exp().ln(), x),
+        (
+            "big integers",
+            Expr::int(1 << 40).powi(3) / Expr::int(1 << 40).powi(2),
+            Expr::int(1 << 40),
+        ),
+        (
+            "kinetic energy of a cart pendulum",
+            {
+                let (xd, thd, th) = (Expr::rate("x", 1), Expr::rate("theta", 1), q("theta"));
+                let vx = xd + l * thd * th.cos();
+                let vy = -(l * thd * th.sin());
+                half * m * (vx.powi(2) + vy.powi(2))
+            },
+            {
+                let (xd, thd, th) = (Expr::rate("x", 1), Expr::rate("theta", 1), q("theta"));
+                half * m * (xd.powi(2) + l.powi(2) * thd.powi(2) + 2 * l * xd * thd * th.cos())
+            },
+        ),
+    ]
+}
+
+#[test]
+fn identities_normalise_to_zero() {
+    for (name, lhs, rhs) in identities() {
+        assert!(
+            (lhs - rhs).is_zero(),
+            "{name}: {:?} ≠ {:?}",
+            lhs.normal(),
+            rhs.normal()
+        );
+        assert_eq!(lhs.normal(), rhs.normal(), "{name}: normal forms differ");
+    }
+}
+
+#[test]
+fn near_identities_are_not_zero() {
+    let tiny = Expr::rational(1, 1_000_000_007).unwrap();
+    for (name, lhs, rhs) in identities() {
+        assert!(
+            !(lhs - rhs + tiny).is_zero(),
+            "{name} + ε normalised to zero"
+        );
+        let x = s("x");
+        assert!(
+            !(lhs - rhs + x * tiny).is_zero(),
+            "{name} + εx normalised to zero"
+        );
+    }
+    let a = q("alpha");
+    assert!(!(a.sin().powi(2) - a.cos().powi(2)).is_zero());
+    assert!(!((a / 2).sin() * 2 - a.sin()).is_zero());
+}
+
+#[test]
+fn floats_stay_floats_and_combine() {
+    let x = s("x");
+    let e = Expr::float(0.5) * x + Expr::float(0.25) * x;
+    assert_eq!(e.normal(), (Expr::float(0.75) * x).normal());
+    assert!(e.normal().as_number().is_none());
+}

@@ -1,0 +1,56 @@
+//! The n-link pendulum's equations, derived with the core, equal their closed form exactly
+//! (normal-form equality) for n up to 10, and numerically at a random state.
+
+mod common;
+
+use common::nlink::NLink;
+
+#[test]
+fn nlink_equations_equal_the_closed_form() {
+    for n in [1, 2, 3, 5, 10] {
+        let system = NLink::new(n);
+        let (mass, forcing) = system.equations();
+        let (mass_ref, forcing_ref) = system.closed_form();
+        for i in 0..n {
+            for j in 0..n {
+                assert_eq!(mass[i][j], mass_ref[i][j].normal(), "n = {n}: M[{i}][{j}]");
+            }
+            assert_eq!(forcing[i], forcing_ref[i].normal(), "n = {n}: f[{i}]");
+        }
+    }
+}
+
+#[test]
+fn nlink_equations_evaluate_like_the_closed_form() {
+    let n = 4;
+    let system = NLink::new(n);
+    let (mass, forcing) = system.equations();
+    let (mass_ref, forcing_ref) = system.closed_form();
+    // A fixed pseudo-random state: every symbol gets a value from its name.
+    let env = |s: cas::Symbol| {
+        let h = s.name().bytes().fold(s.order() as u64 + 7, |h, b| {
+            h.wrapping_mul(31).wrapping_add(b as u64)
+        });
+        Some(0.3 + (h % 997) as f64 / 997.0)
+    };
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (
+                mass[i][j].eval(&env).unwrap(),
+                mass_ref[i][j].eval(&env).unwrap(),
+            );
+            assert!(
+                (a - b).abs() < 1e-12 * (1.0 + b.abs()),
+                "M[{i}][{j}]: {a} vs {b}"
+            );
+        }
+        let (a, b) = (
+            forcing[i].eval(&env).unwrap(),
+            forcing_ref[i].eval(&env).unwrap(),
+        );
+        assert!(
+            (a - b).abs() < 1e-12 * (1.0 + b.abs()),
+            "f[{i}]: {a} vs {b}"
+        );
+    }
+}
