@@ -14,8 +14,14 @@
 //! `ℚ[atoms]/(sin² + cos² − 1)`. The *identity* of normal forms needs the denominator to be
 //! rationalised, which is done while it is small; a fraction whose denominator is a long
 //! trigonometric sum is kept as it is, still equal to its input. Outside the class (roots of
-//! higher order in sums under a fraction bar, the same angle written as both `θ/2` and `θ`)
-//! the normal form is still *equal* to its input, but two equal inputs may differ.
+//! higher order in sums under a fraction bar, the same angle written as both `θ/2` and `θ`,
+//! numeric angles such as `sin(1)` and `sin(1/2)`, which are independent atoms, even roots of
+//! fractions, kept whole because `√(N/D) = √(N D)/D` needs `D > 0`) the normal form is still
+//! *equal* to its input, but two equal inputs may differ.
+//!
+//! Cost: trigonometry of an angle with `k` terms expands into up to `2^k` products, and a
+//! fraction whose denominator is a long trigonometric sum makes every later operation on it
+//! expensive; a GCD gives up (leaving the fraction less reduced but equal) past a work budget.
 
 use std::sync::{Mutex, OnceLock};
 
@@ -365,7 +371,12 @@ impl Normalizer {
                 return v.is_finite().then(|| Rf::constant(Number::Float(v)));
             }
         }
-        // (N/D)^(1/q) = (N D^(q−1))^(1/q) / D.
+        // (N/D)^(1/q) = (N D^(q−1))^(1/q) / D holds for odd q, and for even q only where
+        // D > 0, which the algebra cannot know: an even root of a fraction stays an atom.
+        if q % 2 == 0 && !b.den.is_one() {
+            let atom = Expr::pow(b.to_expr(), Expr::number(Number::rational(1, q as i64)?));
+            return Rf::atom(plain_atom(atom)).powi(p);
+        }
         let radicand = b.num.mul(&b.den.pow(q - 1));
         let root = self.root_of_poly(&radicand, q)?;
         let root = root.div(&Rf::from_poly(b.den.clone()))?;
@@ -378,7 +389,9 @@ impl Normalizer {
         if p.is_zero() {
             return Some(Rf::zero());
         }
-        let content = p.content();
+        // Only a positive content may leave the root: `√(3 − c²)` is not `√−1 · √(c² − 3)`
+        // over the reals.
+        let content = p.content().abs();
         let primitive = p.scale(&content.recip()?);
         let mut result = self.root_of_number(&content, q)?;
         if !primitive.is_one() {

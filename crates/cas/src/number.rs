@@ -126,6 +126,15 @@ impl Number {
         matches!(self, Number::Small { num: 1, den: 1 })
     }
 
+    /// A measure of the cost of arithmetic with this number: 1 for small ones, the number of
+    /// 64-bit words for big ones.
+    pub fn size_hint(&self) -> usize {
+        match self {
+            Number::Big(r) => ((r.numer().bits() + r.denom().bits()) / 64) as usize + 1,
+            _ => 1,
+        }
+    }
+
     /// Whether this is exactly one.
     pub fn is_one(&self) -> bool {
         matches!(self, Number::Small { num: 1, den: 1 })

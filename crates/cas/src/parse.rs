@@ -122,6 +122,11 @@ impl ParseContext {
         ctx
     }
 
+    /// The names declared functions of time, sorted.
+    pub fn coordinate_names(&self) -> impl Iterator<Item = String> + '_ {
+        self.time_functions.iter().cloned()
+    }
+
     /// Whether `name` was declared a function of time.
     pub fn is_coordinate(&self, name: &str) -> bool {
         self.time_functions.contains(name)

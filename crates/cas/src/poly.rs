@@ -438,7 +438,7 @@ impl Poly {
             (other, self)
         };
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
-        acc.reserve(small.terms.len() * large.terms.len());
+        acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
         let mut extra: Vec<Poly> = Vec::new();
         for (ma, ca) in &small.terms {
             for (mb, cb) in &large.terms {
@@ -661,9 +661,44 @@ fn rewrite_term(m: Monomial, c: Number) -> Poly {
     p
 }
 
+thread_local! {
+    /// Work left for the GCD computation under way (in coefficient operations), and how deep
+    /// its recursion is. Remainder sequences in many variables can swell without bound; when
+    /// the budget is spent the computation returns a trivial common divisor, which is always
+    /// correct: the fraction keeps its value and is only less reduced.
+    static GCD_WORK: std::cell::Cell<(i64, u32)> = const { std::cell::Cell::new((0, 0)) };
+}
+
+/// Coefficient operations one top-level GCD may spend.
+const GCD_BUDGET: i64 = 300_000;
+
+fn gcd_budget_spent() -> bool {
+    GCD_WORK.with(|w| w.get().0 <= 0)
+}
+
+fn spend_gcd_work(ops: usize) {
+    GCD_WORK.with(|w| {
+        let (left, depth) = w.get();
+        w.set((left - ops as i64, depth));
+    });
+}
+
 /// The greatest common divisor of two polynomials (atoms as independent variables), made
 /// primitive with a positive leading coefficient. `gcd(0, 0) = 0`.
 pub(crate) fn gcd(a: &Poly, b: &Poly) -> Poly {
+    GCD_WORK.with(|w| {
+        let (left, depth) = w.get();
+        w.set((if depth == 0 { GCD_BUDGET } else { left }, depth + 1));
+    });
+    let g = gcd_inner(a, b);
+    GCD_WORK.with(|w| {
+        let (left, depth) = w.get();
+        w.set((left, depth.saturating_sub(1)));
+    });
+    g
+}
+
+fn gcd_inner(a: &Poly, b: &Poly) -> Poly {
     if a.is_zero() {
         return b.primitive();
     }
@@ -708,7 +743,7 @@ fn gcd_monomial_free(a: &Poly, b: &Poly, depth: usize) -> Poly {
     if b.is_zero() {
         return a.primitive();
     }
-    if a.as_constant().is_some() || b.as_constant().is_some() || depth > 64 {
+    if a.as_constant().is_some() || b.as_constant().is_some() || depth > 64 || gcd_budget_spent() {
         return Poly::one();
     }
     if a.terms.len() == 1 || b.terms.len() == 1 {
@@ -763,6 +798,12 @@ fn gcd_monomial_free(a: &Poly, b: &Poly, depth: usize) -> Poly {
     let mut steps = 0;
     while !q.is_zero() {
         let r = pseudo_remainder(&p, &q, x);
+        if r.terms.len() > GCD_MAX_TERMS || gcd_budget_spent() {
+            // Remainder sequences can grow explosively in many variables. Returning the
+            // contents' gcd is always a correct (if incomplete) common divisor: the fraction
+            // stays equal to its value, only less reduced.
+            return content;
+        }
         p = q;
         q = if r.is_zero() {
             r
@@ -807,6 +848,9 @@ fn primitive_in(p: &Poly, x: AtomId, depth: usize) -> Poly {
     p.div_exact(&c).unwrap_or_else(|| p.clone()).primitive()
 }
 
+/// The size past which a GCD computation gives up reducing (see `gcd_monomial_free`).
+const GCD_MAX_TERMS: usize = 4000;
+
 /// The sparse pseudo-remainder of `a` by `b` in `x`.
 fn pseudo_remainder(a: &Poly, b: &Poly, x: AtomId) -> Poly {
     let (db, lb) = b.leading_coefficient_in(x);
@@ -818,8 +862,10 @@ fn pseudo_remainder(a: &Poly, b: &Poly, x: AtomId) -> Poly {
             return r;
         }
         r = r.mul_raw(&lb).sub(&b.mul_raw(&lr).shift(x, dr - db));
+        let bits: usize = r.terms.iter().map(|(_, c)| c.size_hint()).sum();
+        spend_gcd_work(r.terms.len() * (lb.terms.len() + lr.terms.len()) + bits);
         guard += 1;
-        if guard > 10_000 {
+        if guard > 10_000 || r.terms.len() > GCD_MAX_TERMS || gcd_budget_spent() {
             return r;
         }
     }

@@ -93,6 +93,11 @@ fn identities() -> Vec<(&'static str, Expr, Expr)> {
             Expr::int(2).sqrt() - 1,
         ),
         ("over a root", x / x.sqrt(), x.sqrt()),
+        (
+            "root keeps a negative content inside",
+            (2 + (y - Expr::pi() / 2).cos().powi(2)).sqrt().powi(2),
+            3 - y.cos().powi(2),
+        ),
         ("exp of a sum", (x + 2 * y).exp(), x.exp() * y.exp().powi(2)),
         ("log of exp", x.exp().ln(), x),
         (
