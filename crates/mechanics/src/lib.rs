@@ -1,3 +1,38 @@
-//! Mechanics over `cas` expressions: frames, points, bodies, energies and Lagrange's equations.
+//! Mechanics over `cas` expressions: the checked input [`System`], and Lagrange's equations of
+//! the second kind [`derive`] → [`Equations`].
 //!
-//! Empty until the equations-of-motion issue lands; see `docs/` for the plan.
+//! | symbol | meaning | shape |
+//! |---|---|---|
+//! | `q` | independent generalized coordinates | n |
+//! | `K`, `V`, `L = K − V` | kinetic energy, potential energy, Lagrangian (`U = −V`) | scalar |
+//! | `Q` | generalized forces by virtual work, damping `−∂D/∂q̇` included | n |
+//! | `M(q,t) q̈ = f(q,q̇,t)` | the equations of motion | n×n, n |
+//! | `A q̈ = b` | constraints kept with multipliers: `M q̈ + Aᵀλ = f` | m×n, m |
+//!
+//! ```
+//! use cas::Expr;
+//! use mechanics::{derive, Load, Particle, System};
+//! // A simple pendulum: x = l sin θ, y = −l cos θ, gravity −g ŷ.
+//! let th = Expr::coordinate("theta");
+//! let (m, l, g) = (Expr::symbol("m"), Expr::symbol("l"), Expr::symbol("g"));
+//! let mut system = System::new();
+//! system.add_coordinate("theta");
+//! system.add_particle(Particle {
+//!     name: "P".into(),
+//!     mass: m,
+//!     position: [l * th.sin(), -(l * th.cos()), Expr::zero()],
+//! });
+//! system.add_load(Load::Gravity([Expr::zero(), -g, Expr::zero()]));
+//! let eq = derive(&system).unwrap();
+//! assert!(eq.mass_matrix()[0][0].equals(m * l.powi(2)));
+//! assert!(eq.forcing()[0].equals(-(m * g * l * th.sin())));
+//! ```
+#![warn(missing_docs)]
+
+mod equations;
+mod system;
+
+pub use equations::{derive, Elimination, Equations, FirstIntegral, MechanicsError};
+pub use system::{
+    rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,
+};

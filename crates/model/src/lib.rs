@@ -25,6 +25,7 @@ mod diagnostic;
 mod display;
 mod evaluate;
 pub mod lexer;
+mod lower;
 mod model;
 mod parser;
 mod render;
@@ -36,6 +37,7 @@ pub use check::check;
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Label, NameKind, Severity, Type};
 pub use display::DisplayExpr;
 pub use evaluate::{EvaluationError, State, Value};
+pub use lower::{lower, LowerError};
 pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
     ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,

@@ -1,0 +1,496 @@
+//! Kinematics, energies, generalized forces and Lagrange's equations of the second kind:
+//! `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j − Q_j = 0`, gathered as `M(q,t) q̈ = f(q,q̇,t)`.
+
+use cas::{Expr, Matrix, SolveError, Symbol};
+
+use crate::system::{ConstraintForm, Load, Rotation, System, Vector};
+
+/// What can go wrong deriving the equations.
+#[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MechanicsError {
+    /// The mass matrix is singular: the model does not determine these coordinates'
+    /// accelerations.
+    #[error("the mass matrix is singular: the accelerations of {} are not determined", coordinates.join(", "))]
+    SingularMassMatrix {
+        /// The coordinates involved.
+        coordinates: Vec<String>,
+    },
+    /// An equation is not linear in the accelerations.
+    #[error("the equation of `{coordinate}` is not linear in the accelerations")]
+    NotLinearInAccelerations {
+        /// The coordinate.
+        coordinate: String,
+    },
+    /// A velocity constraint is not linear in the rates.
+    #[error("constraint `{constraint}` is not linear in the rates")]
+    NonlinearConstraint {
+        /// The constraint.
+        constraint: String,
+    },
+    /// The model has no independent coordinate left.
+    #[error("no independent coordinate is left")]
+    NoCoordinates,
+}
+
+/// A coordinate eliminated by an integrable velocity constraint.
+#[derive(Clone, Debug)]
+pub struct Elimination {
+    /// The eliminated coordinate.
+    pub coordinate: String,
+    /// The constraint that eliminated it.
+    pub constraint: String,
+    /// Its value in terms of the remaining coordinates (integration constant zero).
+    pub value: Expr,
+}
+
+/// A conserved quantity, verified to have a zero time derivative on the equations.
+#[derive(Clone, Debug)]
+pub struct FirstIntegral {
+    /// `"energy"`, `"jacobi"`, or `"momentum"`.
+    pub kind: &'static str,
+    /// The coordinate, for a conjugate momentum.
+    pub coordinate: Option<String>,
+    /// The expression.
+    pub value: Expr,
+}
+
+/// Lagrange's equations of a system. Invariant: `mass_matrix` is n×n and non-singular,
+/// `forcing`, `lhs`, `generalized_forces` have n entries, n = `coordinates.len()`.
+#[derive(Clone, Debug)]
+pub struct Equations {
+    coordinates: Vec<String>,
+    kinetic_energy: Expr,
+    potential_energy: Expr,
+    lagrangian: Expr,
+    generalized_forces: Vec<Expr>,
+    lhs: Vec<Expr>,
+    mass_matrix: Vec<Vec<Expr>>,
+    forcing: Vec<Expr>,
+    constraint_matrix: Vec<Vec<Expr>>,
+    constraint_rhs: Vec<Expr>,
+    constraint_names: Vec<String>,
+    eliminated: Vec<Elimination>,
+    accelerations: Option<Vec<Expr>>,
+    first_integrals: Vec<FirstIntegral>,
+}
+
+impl Equations {
+    /// The independent coordinates.
+    #[must_use]
+    pub fn coordinates(&self) -> &[String] {
+        &self.coordinates
+    }
+    /// `K`.
+    #[must_use]
+    pub fn kinetic_energy(&self) -> Expr {
+        self.kinetic_energy
+    }
+    /// `V` (the seed's `U = −V`).
+    #[must_use]
+    pub fn potential_energy(&self) -> Expr {
+        self.potential_energy
+    }
+    /// `L = K − V`.
+    #[must_use]
+    pub fn lagrangian(&self) -> Expr {
+        self.lagrangian
+    }
+    /// `Q_j`, damping included.
+    #[must_use]
+    pub fn generalized_forces(&self) -> &[Expr] {
+        &self.generalized_forces
+    }
+    /// `d/dt(∂L/∂q̇_j) − ∂L/∂q_j` (normal form), which equals `Q_j` on motions.
+    #[must_use]
+    pub fn lagrange_lhs(&self) -> &[Expr] {
+        &self.lhs
+    }
+    /// `M(q, t)`, rows.
+    #[must_use]
+    pub fn mass_matrix(&self) -> &[Vec<Expr>] {
+        &self.mass_matrix
+    }
+    /// `f(q, q̇, t)` with `M q̈ = f` (plus `−Aᵀλ` when there are constraint multipliers).
+    #[must_use]
+    pub fn forcing(&self) -> &[Expr] {
+        &self.forcing
+    }
+    /// `A` of the constraints kept with multipliers (`A q̈ = b`), rows.
+    #[must_use]
+    pub fn constraint_matrix(&self) -> &[Vec<Expr>] {
+        &self.constraint_matrix
+    }
+    /// `b` of `A q̈ = b`.
+    #[must_use]
+    pub fn constraint_rhs(&self) -> &[Expr] {
+        &self.constraint_rhs
+    }
+    /// The names of the constraint rows of `A`.
+    #[must_use]
+    pub fn constraint_names(&self) -> &[String] {
+        &self.constraint_names
+    }
+    /// The coordinates eliminated by integrable constraints.
+    #[must_use]
+    pub fn eliminated(&self) -> &[Elimination] {
+        &self.eliminated
+    }
+    /// The explicit `q̈ = M⁻¹ f` for one or two degrees of freedom without multipliers.
+    #[must_use]
+    pub fn accelerations(&self) -> Option<&[Expr]> {
+        self.accelerations.as_deref()
+    }
+    /// The verified first integrals.
+    #[must_use]
+    pub fn first_integrals(&self) -> &[FirstIntegral] {
+        &self.first_integrals
+    }
+}
+
+fn dot(a: &Vector, b: &Vector) -> Expr {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sym(e: Expr) -> Option<Symbol> {
+    e.as_symbol()
+}
+
+fn depends_on(e: Expr, symbols: &[Symbol]) -> bool {
+    symbols.iter().any(|s| !e.diff(*s).is_zero())
+}
+
+/// The angular velocity `ω` (inertial components) from `ω× = Ṙ Rᵀ`.
+fn angular_velocity(r: &Rotation) -> Vector {
+    let rd: Vec<Vec<Expr>> = r
+        .iter()
+        .map(|row| row.iter().map(|e| e.dt()).collect())
+        .collect();
+    let w = |i: usize, j: usize| -> Expr { (0..3).map(|k| rd[i][k] * r[j][k]).sum::<Expr>() };
+    [
+        ((w(2, 1) - w(1, 2)) / 2).normal(),
+        ((w(0, 2) - w(2, 0)) / 2).normal(),
+        ((w(1, 0) - w(0, 1)) / 2).normal(),
+    ]
+}
+
+/// Eliminates coordinates with integrable velocity constraints (constant-ratio linear
+/// relations among rates) and returns the rest as multiplier rows `(name, c)` with `c = 0`
+/// at the velocity level.
+fn eliminate(
+    system: &mut System,
+    eliminated: &mut Vec<Elimination>,
+) -> Result<Vec<(String, Expr)>, MechanicsError> {
+    let mut kept = Vec::new();
+    let constraints = system.constraints().to_vec();
+    let mut pending: Vec<(String, ConstraintForm)> = constraints
+        .into_iter()
+        .flat_map(|c| {
+            let name = c.name.clone();
+            c.equations.into_iter().map(move |e| (name.clone(), e))
+        })
+        .collect();
+    while let Some((name, form)) = pending.first().cloned() {
+        pending.remove(0);
+        let coordinates = system.coordinates().to_vec();
+        let c = match form {
+            ConstraintForm::Holonomic(f) => f.dt(),
+            ConstraintForm::Velocity(c) => c,
+        };
+        if c.is_zero() {
+            continue;
+        }
+        let rates: Vec<Expr> = coordinates.iter().map(|q| Expr::rate(q, 1)).collect();
+        let Some((a, b)) = c.affine_coefficients(&rates) else {
+            return Err(MechanicsError::NonlinearConstraint { constraint: name });
+        };
+        let mut state: Vec<Symbol> = coordinates
+            .iter()
+            .filter_map(|q| sym(Expr::coordinate(q)))
+            .collect();
+        state.extend(rates.iter().filter_map(|r| sym(*r)));
+        state.extend(sym(Expr::time()));
+        let pivot = (0..a.len()).rev().find(|&k| !a[k].is_zero());
+        let Some(k) = pivot else {
+            kept.push((name, c));
+            continue;
+        };
+        let ratios: Vec<Expr> = a.iter().map(|x| (*x / a[k]).normal()).collect();
+        let offset = (b / a[k]).normal();
+        let forced = system
+            .loads()
+            .iter()
+            .any(|l| matches!(l, Load::GeneralizedForce { coordinate, .. } if *coordinate == k));
+        let integrable = !forced
+            && offset.is_zero()
+            && ratios.iter().all(|r| !depends_on(*r, &state))
+            && coordinates.len() > 1;
+        if !integrable {
+            kept.push((name, c));
+            continue;
+        }
+        let value = (0..a.len())
+            .filter(|&j| j != k)
+            .map(|j| -(ratios[j] * Expr::coordinate(&coordinates[j])))
+            .sum::<Expr>()
+            .normal();
+        let pairs: Vec<(Expr, Expr)> = (0..3u8)
+            .map(|order| {
+                let mut v = value;
+                for _ in 0..order {
+                    v = v.dt();
+                }
+                let target = if order == 0 {
+                    Expr::coordinate(&coordinates[k])
+                } else {
+                    Expr::rate(&coordinates[k], order)
+                };
+                (target, v)
+            })
+            .collect();
+        system.eliminate(k, &|e: Expr| e.subs(&pairs));
+        for (_, f) in &mut pending {
+            *f = match f {
+                ConstraintForm::Holonomic(x) => ConstraintForm::Holonomic(x.subs(&pairs)),
+                ConstraintForm::Velocity(x) => ConstraintForm::Velocity(x.subs(&pairs)),
+            };
+        }
+        for (_, x) in &mut kept {
+            *x = x.subs(&pairs);
+        }
+        eliminated.push(Elimination {
+            coordinate: coordinates[k].clone(),
+            constraint: name,
+            value,
+        });
+    }
+    Ok(kept.into_iter().filter(|(_, c)| !c.is_zero()).collect())
+}
+
+/// Derives Lagrange's equations `M(q,t) q̈ = f(q,q̇,t)` of `system`:
+/// `K = Σ ½ m v² + Σ (½ m v_G² + ½ ω_Bᵀ I_G ω_B)` with `ω_B = Rᵀω`, `V` from gravity
+/// (`−m g·r`), springs and potentials, `Q_j = Σ F·∂r/∂q_j + Σ C·∂ω/∂q̇_j − ∂D/∂q̇_j + Q_j^gen`,
+/// `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j − Q_j`, `M_jk = ∂E_j/∂q̈_k`, `f = −E|_{q̈=0}`.
+///
+/// # Errors
+/// A singular mass matrix (naming the coordinates), equations or constraints not linear in
+/// the accelerations or rates, or no coordinate left.
+pub fn derive(system: &System) -> Result<Equations, MechanicsError> {
+    let mut system = system.clone();
+    let mut eliminated = Vec::new();
+    let kept = eliminate(&mut system, &mut eliminated)?;
+    let coordinates = system.coordinates().to_vec();
+    let n = coordinates.len();
+    if n == 0 {
+        return Err(MechanicsError::NoCoordinates);
+    }
+    let q: Vec<Expr> = coordinates.iter().map(|c| Expr::coordinate(c)).collect();
+    let qd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 1)).collect();
+    let qdd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 2)).collect();
+    let q_sym: Vec<Option<Symbol>> = q.iter().map(|e| sym(*e)).collect();
+    let qd_sym: Vec<Option<Symbol>> = qd.iter().map(|e| sym(*e)).collect();
+    let partial = |e: Expr, s: Option<Symbol>| s.map_or_else(Expr::zero, |s| e.diff(s));
+
+    // Kinetic energy.
+    let mut kinetic = Expr::zero();
+    for p in system.particles() {
+        let v: Vector = p.position.map(|x| x.dt().normal());
+        kinetic += p.mass * dot(&v, &v) / 2;
+    }
+    let omegas: Vec<Vector> = system
+        .bodies()
+        .iter()
+        .map(|b| angular_velocity(&b.rotation))
+        .collect();
+    for (b, w) in system.bodies().iter().zip(&omegas) {
+        let v: Vector = b.centre.map(|x| x.dt().normal());
+        let r = &b.rotation;
+        let wb: Vec<Expr> = (0..3)
+            .map(|i| (0..3).map(|k| r[k][i] * w[k]).sum::<Expr>().normal())
+            .collect();
+        let mut rot = Expr::zero();
+        for i in 0..3 {
+            for j in 0..3 {
+                rot += wb[i] * b.inertia[i][j] * wb[j];
+            }
+        }
+        kinetic += b.mass * dot(&v, &v) / 2 + rot / 2;
+    }
+    let kinetic = kinetic.normal();
+
+    // Potential, dissipation, generalized forces.
+    let mut potential = Expr::zero();
+    let mut dissipation = Expr::zero();
+    let mut forces = vec![Expr::zero(); n];
+    for load in system.loads() {
+        match load {
+            Load::Gravity(g) => {
+                for p in system.particles() {
+                    potential -= p.mass * dot(g, &p.position);
+                }
+                for b in system.bodies() {
+                    potential -= b.mass * dot(g, &b.centre);
+                }
+            }
+            Load::Potential(v) => potential += *v,
+            Load::Dissipation(d) => dissipation += *d,
+            Load::Force { force, point } => {
+                for j in 0..n {
+                    let dr: Vector = point.map(|x| partial(x, q_sym[j]));
+                    forces[j] += dot(force, &dr);
+                }
+            }
+            Load::Couple { moment, body } => {
+                if let Some(w) = omegas.get(*body) {
+                    for j in 0..n {
+                        let dw: Vector = w.map(|x| partial(x, qd_sym[j]));
+                        forces[j] += dot(moment, &dw);
+                    }
+                }
+            }
+            Load::GeneralizedForce { force, coordinate } => {
+                if let Some(f) = forces.get_mut(*coordinate) {
+                    *f += *force;
+                }
+            }
+        }
+    }
+    for j in 0..n {
+        forces[j] = (forces[j] - partial(dissipation, qd_sym[j])).normal();
+    }
+    let potential = potential.normal();
+    let lagrangian = (kinetic - potential).normal();
+
+    // Lagrange II.
+    let mut lhs = Vec::with_capacity(n);
+    let mut mass_matrix = Vec::with_capacity(n);
+    let mut forcing = Vec::with_capacity(n);
+    let momenta: Vec<Expr> = (0..n)
+        .map(|j| partial(lagrangian, qd_sym[j]).normal())
+        .collect();
+    for j in 0..n {
+        let e = (momenta[j].dt() - partial(lagrangian, q_sym[j])).normal();
+        let Some((row, rest)) = (e - forces[j]).affine_coefficients(&qdd) else {
+            return Err(MechanicsError::NotLinearInAccelerations {
+                coordinate: coordinates[j].clone(),
+            });
+        };
+        lhs.push(e);
+        mass_matrix.push(row);
+        forcing.push((-rest).normal());
+    }
+    check_singular(&mass_matrix, &coordinates)?;
+
+    // Constraints kept with multipliers: c = A q̇ + a₀ = 0 ⇒ A q̈ = −(ċ with q̈ = 0).
+    let mut constraint_matrix = Vec::new();
+    let mut constraint_rhs = Vec::new();
+    let mut constraint_names = Vec::new();
+    for (name, c) in &kept {
+        let Some((row, rest)) = c.dt().affine_coefficients(&qdd) else {
+            return Err(MechanicsError::NonlinearConstraint {
+                constraint: name.clone(),
+            });
+        };
+        constraint_matrix.push(row);
+        constraint_rhs.push((-rest).normal());
+        constraint_names.push(name.clone());
+    }
+
+    let accelerations = if n <= 2 && kept.is_empty() {
+        Matrix::from_rows(mass_matrix.clone())
+            .and_then(|m| m.solve(&Matrix::column(forcing.clone())).ok())
+            .map(|x| {
+                (0..n)
+                    .filter_map(|i| x.get(i, 0).map(Expr::normal))
+                    .collect()
+            })
+    } else {
+        None
+    };
+
+    // First integrals.
+    let mut first_integrals = Vec::new();
+    if kept.is_empty() {
+        let time = sym(Expr::time());
+        let explicit_time = time.is_some_and(|t| !lagrangian.diff(t).is_zero());
+        let unforced = forces.iter().all(|f| f.is_zero());
+        if !explicit_time && unforced && n <= 4 {
+            let h = ((0..n).map(|j| qd[j] * momenta[j]).sum::<Expr>() - lagrangian).normal();
+            // dh/dt = Σ q̇_j (E_j + Q_j) − ∂L/∂t identically; with Q = 0 and no explicit
+            // time h is conserved. The identity is checked rather than assumed.
+            let residual = h.dt() - (0..n).map(|j| qd[j] * lhs[j]).sum::<Expr>();
+            if residual.is_zero() {
+                let energy = (kinetic + potential).normal();
+                let kind = if energy.equals(h) { "energy" } else { "jacobi" };
+                first_integrals.push(FirstIntegral {
+                    kind,
+                    coordinate: None,
+                    value: h,
+                });
+            }
+        }
+        for j in 0..n {
+            if partial(lagrangian, q_sym[j]).is_zero() && forces[j].is_zero() {
+                first_integrals.push(FirstIntegral {
+                    kind: "momentum",
+                    coordinate: Some(coordinates[j].clone()),
+                    value: momenta[j],
+                });
+            }
+        }
+    }
+
+    Ok(Equations {
+        coordinates,
+        kinetic_energy: kinetic,
+        potential_energy: potential,
+        lagrangian,
+        generalized_forces: forces,
+        lhs,
+        mass_matrix,
+        forcing,
+        constraint_matrix,
+        constraint_rhs,
+        constraint_names,
+        eliminated,
+        accelerations,
+        first_integrals,
+    })
+}
+
+/// Errors when `M` is singular: a zero row names its coordinate; for up to four degrees of
+/// freedom the determinant is checked exactly, and the coordinates of the pivot-less column
+/// are named.
+fn check_singular(mass: &[Vec<Expr>], coordinates: &[String]) -> Result<(), MechanicsError> {
+    let zero_rows: Vec<String> = mass
+        .iter()
+        .zip(coordinates)
+        .filter(|(row, _)| row.iter().all(|e| e.is_zero()))
+        .map(|(_, c)| c.clone())
+        .collect();
+    if !zero_rows.is_empty() {
+        return Err(MechanicsError::SingularMassMatrix {
+            coordinates: zero_rows,
+        });
+    }
+    if coordinates.len() <= 4 {
+        let Some(m) = Matrix::from_rows(mass.to_vec()) else {
+            return Ok(());
+        };
+        let singular = m.determinant().is_some_and(Expr::is_zero);
+        if singular {
+            let named = match m.solve(&Matrix::zeros(coordinates.len(), 1)) {
+                Err(SolveError::Singular { column }) => coordinates
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| *k <= column)
+                    .filter(|(k, _)| mass.iter().any(|row| !row[*k].is_zero()) || *k == column)
+                    .map(|(_, c)| c.clone())
+                    .collect(),
+                _ => coordinates.to_vec(),
+            };
+            return Err(MechanicsError::SingularMassMatrix { coordinates: named });
+        }
+    }
+    Ok(())
+}

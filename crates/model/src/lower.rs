@@ -1,0 +1,550 @@
+//! Lowering: a checked [`Model`] → the mechanics' [`mechanics::System`], every expression a
+//! `cas` expression in inertial components.
+//!
+//! Parameters and inputs without a time-dependent value stay symbols (their values are
+//! defaults for simulation); constants and time-dependent inputs are substituted; driven
+//! coordinates are replaced by their motion `q = f(t)` (and `q̇` by `ḟ`).
+
+use cas::{Expr as Cx, Number};
+use mechanics::{
+    rotation_about, Constraint as MConstraint, ConstraintForm, Load as MLoad, Particle, RigidBody,
+    Rotation, System, Vector,
+};
+
+use crate::ast::BinaryOp;
+use crate::model::{
+    Axis, Connection, ConstraintKind, Declaration, Expr, ExprKind, Function, Load, Model,
+};
+use crate::span::Span;
+
+/// Why a model could not be lowered.
+#[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum LowerError {
+    /// An expression has the wrong shape (a vector where a scalar is needed or the reverse).
+    #[error("a {expected} was expected here")]
+    Shape {
+        /// Where.
+        span: Span,
+        /// `"scalar"` or `"vector"`.
+        expected: &'static str,
+    },
+    /// A reference to something not lowered yet (the model's declarations are out of order).
+    #[error("a reference to a declaration that is not available here")]
+    Unresolved {
+        /// Where.
+        span: Span,
+    },
+}
+
+/// A lowered value.
+#[derive(Clone, Copy, Debug)]
+enum Value {
+    Scalar(Cx),
+    Vector(Vector),
+}
+
+struct Lowerer<'m> {
+    model: &'m Model,
+    coordinates: Vec<Option<(Cx, Cx)>>,
+    constants: Vec<Option<Value>>,
+    inputs: Vec<Option<Cx>>,
+    frames: Vec<Option<Rotation>>,
+    points: Vec<Option<Vector>>,
+}
+
+fn identity() -> Rotation {
+    rotation_about(3, Cx::zero())
+}
+
+fn matmul(a: &Rotation, b: &Rotation) -> Rotation {
+    let mut out = identity();
+    for (i, row) in out.iter_mut().enumerate() {
+        for (j, entry) in row.iter_mut().enumerate() {
+            *entry = (0..3).map(|k| a[i][k] * b[k][j]).sum::<Cx>().normal();
+        }
+    }
+    out
+}
+
+fn axis_index(axis: Axis) -> usize {
+    match axis {
+        Axis::X => 0,
+        Axis::Y => 1,
+        Axis::Z => 2,
+    }
+}
+
+impl Lowerer<'_> {
+    fn scalar(&self, e: &Expr) -> Result<Cx, LowerError> {
+        match self.expr(e)? {
+            Value::Scalar(x) => Ok(x),
+            Value::Vector(_) => Err(LowerError::Shape {
+                span: e.span,
+                expected: "scalar",
+            }),
+        }
+    }
+
+    fn vector(&self, e: &Expr) -> Result<Vector, LowerError> {
+        match self.expr(e)? {
+            Value::Vector(v) => Ok(v),
+            Value::Scalar(_) => Err(LowerError::Shape {
+                span: e.span,
+                expected: "vector",
+            }),
+        }
+    }
+
+    fn expr(&self, e: &Expr) -> Result<Value, LowerError> {
+        let unresolved = LowerError::Unresolved { span: e.span };
+        let shape = |expected| LowerError::Shape {
+            span: e.span,
+            expected,
+        };
+        Ok(match &e.kind {
+            ExprKind::Number { text, value } => Value::Scalar(
+                Number::parse_literal(text).map_or_else(|| Cx::float(*value), Cx::number),
+            ),
+            ExprKind::Time => Value::Scalar(Cx::time()),
+            ExprKind::Pi => Value::Scalar(Cx::pi()),
+            ExprKind::Coordinate(id) => Value::Scalar(
+                self.coordinates
+                    .get(id.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(unresolved)?
+                    .0,
+            ),
+            ExprKind::Rate(id) => Value::Scalar(
+                self.coordinates
+                    .get(id.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(unresolved)?
+                    .1,
+            ),
+            ExprKind::Parameter(id) => {
+                Value::Scalar(Cx::symbol(&self.model.parameter(*id).name.name))
+            }
+            ExprKind::Input(id) => Value::Scalar(
+                self.inputs
+                    .get(id.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(unresolved)?,
+            ),
+            ExprKind::Constant(id) => self
+                .constants
+                .get(id.index())
+                .copied()
+                .flatten()
+                .ok_or(unresolved)?,
+            ExprKind::Point(id) => Value::Vector(
+                self.points
+                    .get(id.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(unresolved)?,
+            ),
+            ExprKind::UnitVector { frame, axis } => {
+                let r = self
+                    .frames
+                    .get(frame.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(unresolved)?;
+                let k = axis_index(*axis);
+                Value::Vector([r[0][k], r[1][k], r[2][k]])
+            }
+            ExprKind::Neg(x) => match self.expr(x)? {
+                Value::Scalar(s) => Value::Scalar(-s),
+                Value::Vector(v) => Value::Vector(v.map(|c| -c)),
+            },
+            ExprKind::Binary { op, lhs, rhs } => match (op, self.expr(lhs)?, self.expr(rhs)?) {
+                (BinaryOp::Add, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a + b),
+                (BinaryOp::Sub, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a - b),
+                (BinaryOp::Mul, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a * b),
+                (BinaryOp::Div, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a / b),
+                (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(b)) => {
+                    match b.as_number().and_then(Number::to_i64) {
+                        Some(k) => Value::Scalar(a.powi(k)),
+                        None => Value::Scalar(a.pow(b)),
+                    }
+                }
+                (BinaryOp::Add, Value::Vector(a), Value::Vector(b)) => {
+                    Value::Vector([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+                }
+                (BinaryOp::Sub, Value::Vector(a), Value::Vector(b)) => {
+                    Value::Vector([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+                }
+                (BinaryOp::Mul, Value::Scalar(s), Value::Vector(v))
+                | (BinaryOp::Mul, Value::Vector(v), Value::Scalar(s)) => {
+                    Value::Vector(v.map(|c| s * c))
+                }
+                (BinaryOp::Div, Value::Vector(v), Value::Scalar(s)) => {
+                    Value::Vector(v.map(|c| c / s))
+                }
+                (_, Value::Vector(_), _) | (_, _, Value::Vector(_)) => return Err(shape("scalar")),
+            },
+            ExprKind::Call { function, args } => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<Result<Vec<_>, _>>()?;
+                match (function, vals.as_slice()) {
+                    (Function::Dot, [Value::Vector(u), Value::Vector(v)]) => {
+                        Value::Scalar(u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
+                    }
+                    (Function::Cross, [Value::Vector(u), Value::Vector(v)]) => Value::Vector([
+                        u[1] * v[2] - u[2] * v[1],
+                        u[2] * v[0] - u[0] * v[2],
+                        u[0] * v[1] - u[1] * v[0],
+                    ]),
+                    (Function::Norm, [Value::Vector(v)]) => {
+                        Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+                    }
+                    (f, [Value::Scalar(x)]) => Value::Scalar(match f {
+                        Function::Sin => x.sin(),
+                        Function::Cos => x.cos(),
+                        Function::Tan => x.tan(),
+                        Function::Asin => x.asin(),
+                        Function::Acos => x.acos(),
+                        Function::Atan => x.atan(),
+                        Function::Exp => x.exp(),
+                        Function::Ln => x.ln(),
+                        Function::Sqrt => x.sqrt(),
+                        Function::Abs => x.abs(),
+                        Function::Sign => x.sign(),
+                        _ => return Err(shape("vector")),
+                    }),
+                    (Function::Atan2, [Value::Scalar(y), Value::Scalar(x)]) => {
+                        Value::Scalar(Cx::atan2(*y, *x))
+                    }
+                    _ => return Err(shape("scalar")),
+                }
+            }
+        })
+    }
+}
+
+/// Lowers a checked model to the mechanics' input, one pass over the declarations in file
+/// order. Inertia given `about` a point other than the centre of mass is moved to the centre
+/// of mass with the parallel-axis theorem `I_G = I_P − m ((r·r) 1 − r ⊗ r)`, `r = G − P` in
+/// body axes.
+///
+/// # Errors
+/// A [`LowerError`] with the span of the offending expression.
+pub fn lower(model: &Model) -> Result<System, LowerError> {
+    let mut l = Lowerer {
+        model,
+        coordinates: vec![None; model.coordinates().len()],
+        constants: vec![None; model.constants().len()],
+        inputs: vec![None; model.inputs().len()],
+        frames: vec![None; model.frames().len()],
+        points: vec![None; model.points().len()],
+    };
+    if let Some(origin) = l.points.get_mut(0) {
+        *origin = Some([Cx::zero(), Cx::zero(), Cx::zero()]);
+    }
+    let mut system = System::new();
+    let mut coordinate_index = vec![None; model.coordinates().len()];
+    let mut body_index = vec![None; model.bodies().len()];
+    for declaration in model.declarations() {
+        match *declaration {
+            Declaration::Coordinate(id) => {
+                let c = model.coordinate(id);
+                let name = &c.name.name;
+                let value = match &c.driven {
+                    Some(motion) => {
+                        let f = l.scalar(motion)?;
+                        system.add_driven(name, f);
+                        (f, f.dt())
+                    }
+                    None => {
+                        coordinate_index[id.index()] = Some(system.add_coordinate(name));
+                        (Cx::coordinate(name), Cx::rate(name, 1))
+                    }
+                };
+                l.coordinates[id.index()] = Some(value);
+            }
+            Declaration::Parameter(id) => {
+                let p = model.parameter(id);
+                let value = p.value.as_ref().map(|v| l.scalar(v)).transpose()?;
+                system.add_parameter(&p.name.name, value);
+            }
+            Declaration::Input(id) => {
+                let input = model.input(id);
+                let symbol = Cx::symbol(&input.name.name);
+                let value = match &input.value {
+                    Some(v) => {
+                        let x = l.scalar(v)?;
+                        let timed = Cx::time().as_symbol().is_some_and(|t| !x.diff(t).is_zero());
+                        if timed {
+                            x
+                        } else {
+                            symbol
+                        }
+                    }
+                    None => symbol,
+                };
+                l.inputs[id.index()] = Some(value);
+            }
+            Declaration::Constant(id) => {
+                let value = l.expr(&model.constant(id).value)?;
+                l.constants[id.index()] = Some(value);
+            }
+            Declaration::Frame(id) => {
+                let r = match &model.frame(id).rotation {
+                    None => identity(),
+                    Some((parent, rotations)) => {
+                        let mut r = l.frames.get(parent.index()).copied().flatten().ok_or(
+                            LowerError::Unresolved {
+                                span: model.frame(id).name.span,
+                            },
+                        )?;
+                        for rotation in rotations {
+                            let angle = l.scalar(&rotation.angle)?;
+                            r = matmul(&r, &rotation_about(axis_index(rotation.axis), angle));
+                        }
+                        r
+                    }
+                };
+                l.frames[id.index()] = Some(r);
+            }
+            Declaration::Point(id) => {
+                if let Some(position) = &model.point(id).position {
+                    let v = l.vector(position)?;
+                    l.points[id.index()] = Some(v.map(Cx::normal));
+                }
+            }
+            Declaration::Body(id) => {
+                let b = model.body(id);
+                let index = lower_body(&l, &mut system, b)?;
+                body_index[id.index()] = Some(index);
+            }
+            Declaration::Constraint(_) => {}
+        }
+    }
+    for p in model.particles() {
+        let position = l
+            .points
+            .get(p.point.index())
+            .copied()
+            .flatten()
+            .ok_or(LowerError::Unresolved { span: p.span })?;
+        system.add_particle(Particle {
+            name: model.point(p.point).name.name.clone(),
+            mass: l.scalar(&p.mass)?,
+            position,
+        });
+    }
+    for item in model.loads() {
+        let load = match &item.load {
+            Load::Gravity(g) => MLoad::Gravity(l.vector(g)?),
+            Load::Spring {
+                stiffness,
+                connection,
+                rest,
+            } => {
+                let k = l.scalar(stiffness)?;
+                let rest = rest.as_ref().map(|r| l.scalar(r)).transpose()?;
+                let rest = rest.filter(|r| !r.is_zero());
+                let v = match connection {
+                    Connection::Points { from, to } => {
+                        let (a, b) = (l.vector(from)?, l.vector(to)?);
+                        let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                        match rest {
+                            // With no rest length the potential stays polynomial.
+                            None => k * d2 / 2,
+                            Some(r) => k * (d2.sqrt() - r).powi(2) / 2,
+                        }
+                    }
+                    Connection::Scalar(s) => {
+                        let s = l.scalar(s)?;
+                        k * (s - rest.unwrap_or_else(Cx::zero)).powi(2) / 2
+                    }
+                };
+                MLoad::Potential(v)
+            }
+            Load::Damper {
+                coefficient,
+                connection,
+            } => {
+                let c = l.scalar(coefficient)?;
+                let rate2 = match connection {
+                    Connection::Points { from, to } => {
+                        let (a, b) = (l.vector(from)?, l.vector(to)?);
+                        let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+                        let dd: Vector = d.map(Cx::dt);
+                        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                        let along = d[0] * dd[0] + d[1] * dd[1] + d[2] * dd[2];
+                        along.powi(2) / d2
+                    }
+                    Connection::Scalar(s) => l.scalar(s)?.dt().powi(2),
+                };
+                MLoad::Dissipation(c * rate2 / 2)
+            }
+            Load::Dissipation(d) => MLoad::Dissipation(l.scalar(d)?),
+            Load::Potential(v) => MLoad::Potential(l.scalar(v)?),
+            Load::Force { force, point } => MLoad::Force {
+                force: l.vector(force)?,
+                point: l.vector(point)?,
+            },
+            Load::Couple { moment, body } => MLoad::Couple {
+                moment: l.vector(moment)?,
+                body: body_index
+                    .get(body.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(LowerError::Unresolved { span: item.span })?,
+            },
+            Load::GeneralizedForce { force, coordinate } => {
+                let f = l.scalar(force)?;
+                match coordinate_index.get(coordinate.index()).copied().flatten() {
+                    Some(j) => MLoad::GeneralizedForce {
+                        force: f,
+                        coordinate: j,
+                    },
+                    // A generalized force on a driven coordinate does no virtual work.
+                    None => continue,
+                }
+            }
+        };
+        system.add_load(load);
+    }
+    for c in model.constraints() {
+        let name = c
+            .name
+            .as_ref()
+            .map_or_else(|| "constraint".to_string(), |n| n.name.clone());
+        let equations = match &c.kind {
+            ConstraintKind::Holonomic { lhs, rhs } => {
+                vec![ConstraintForm::Holonomic(l.scalar(lhs)? - l.scalar(rhs)?)]
+            }
+            ConstraintKind::Velocity { lhs, rhs } => {
+                vec![ConstraintForm::Velocity(l.scalar(lhs)? - l.scalar(rhs)?)]
+            }
+            ConstraintKind::Gear {
+                driver,
+                driven,
+                ratio,
+            } => {
+                let rate = |id: crate::model::CoordinateId| {
+                    l.coordinates
+                        .get(id.index())
+                        .copied()
+                        .flatten()
+                        .map(|x| x.1)
+                        .ok_or(LowerError::Unresolved { span: c.span })
+                };
+                vec![ConstraintForm::Velocity(
+                    rate(*driven)? - l.scalar(ratio)? * rate(*driver)?,
+                )]
+            }
+            ConstraintKind::Rolling { body, contact } => {
+                let b = model.body(*body);
+                let g = l
+                    .points
+                    .get(b.centre.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(LowerError::Unresolved { span: c.span })?;
+                let p = l
+                    .points
+                    .get(contact.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(LowerError::Unresolved { span: c.span })?;
+                let r = l
+                    .frames
+                    .get(b.frame.index())
+                    .copied()
+                    .flatten()
+                    .ok_or(LowerError::Unresolved { span: c.span })?;
+                let w = angular_velocity(&r);
+                let d: Vector = [p[0] - g[0], p[1] - g[1], p[2] - g[2]];
+                let v: Vector = g.map(Cx::dt);
+                let vp = [
+                    v[0] + w[1] * d[2] - w[2] * d[1],
+                    v[1] + w[2] * d[0] - w[0] * d[2],
+                    v[2] + w[0] * d[1] - w[1] * d[0],
+                ];
+                // Expressed in the body frame the components' coefficients are often constant,
+                // which lets an integrable rolling constraint eliminate a coordinate.
+                (0..3)
+                    .map(|i| {
+                        ConstraintForm::Velocity(
+                            (0..3).map(|k| r[k][i] * vp[k]).sum::<Cx>().normal(),
+                        )
+                    })
+                    .collect()
+            }
+        };
+        system.add_constraint(MConstraint { name, equations });
+    }
+    Ok(system)
+}
+
+fn angular_velocity(r: &Rotation) -> Vector {
+    let w = |i: usize, j: usize| -> Cx { (0..3).map(|k| r[i][k].dt() * r[j][k]).sum::<Cx>() };
+    [
+        ((w(2, 1) - w(1, 2)) / 2).normal(),
+        ((w(0, 2) - w(2, 0)) / 2).normal(),
+        ((w(1, 0) - w(0, 1)) / 2).normal(),
+    ]
+}
+
+fn lower_body(
+    l: &Lowerer<'_>,
+    system: &mut System,
+    b: &crate::model::Body,
+) -> Result<usize, LowerError> {
+    let unresolved = LowerError::Unresolved { span: b.name.span };
+    let mass = l.scalar(&b.mass)?;
+    let centre = l
+        .points
+        .get(b.centre.index())
+        .copied()
+        .flatten()
+        .ok_or(unresolved.clone())?;
+    let rotation = l
+        .frames
+        .get(b.frame.index())
+        .copied()
+        .flatten()
+        .ok_or(unresolved.clone())?;
+    let c = &b.inertia.components;
+    let get = |i: usize| -> Result<Cx, LowerError> {
+        c[i].as_ref().map_or(Ok(Cx::zero()), |e| l.scalar(e))
+    };
+    let (xx, yy, zz, xy, xz, yz) = (get(0)?, get(1)?, get(2)?, get(3)?, get(4)?, get(5)?);
+    let mut inertia = [[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]];
+    if b.inertia.about != b.centre {
+        let p = l
+            .points
+            .get(b.inertia.about.index())
+            .copied()
+            .flatten()
+            .ok_or(unresolved)?;
+        let d: Vector = [centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]];
+        let r: Vec<Cx> = (0..3)
+            .map(|i| (0..3).map(|k| rotation[k][i] * d[k]).sum::<Cx>().normal())
+            .collect();
+        let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+        for (i, row) in inertia.iter_mut().enumerate() {
+            for (j, entry) in row.iter_mut().enumerate() {
+                let delta = if i == j { r2 } else { Cx::zero() };
+                *entry = (*entry - mass * (delta - r[i] * r[j])).normal();
+            }
+        }
+    }
+    Ok(system.add_body(RigidBody {
+        name: b.name.name.clone(),
+        mass,
+        centre,
+        rotation,
+        inertia,
+    }))
+}
