@@ -28,6 +28,14 @@ pub enum Command {
         /// The model file (`.lag`).
         model: PathBuf,
     },
+    /// Print Lagrange's equations of motion `M(q,t) q̈ = f(q,q̇,t)` of a model.
+    Eom {
+        /// The model file (`.lag`).
+        model: PathBuf,
+        /// Output: text for people, or JSON (schema in docs/json.md).
+        #[arg(long, value_enum, default_value_t = EomFormat::Text)]
+        format: EomFormat,
+    },
     /// Print the normal form of an expression (SymPy syntax; rates as `q_d`, `q_dd`).
     Simplify {
         /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)".
@@ -65,4 +73,13 @@ pub enum Format {
     Latex,
     /// SymPy syntax, exactly the normal form (reads back with `lagrange simplify`).
     Sympy,
+}
+
+/// How `lagrange eom` prints.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EomFormat {
+    /// Unicode equations, the way the course writes them.
+    Text,
+    /// JSON, `"schema": 1` (docs/json.md).
+    Json,
 }

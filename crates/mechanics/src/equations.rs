@@ -193,8 +193,16 @@ fn eliminate(
     while let Some((name, form)) = pending.first().cloned() {
         pending.remove(0);
         let coordinates = system.coordinates().to_vec();
+        // Holonomic constraints stay implicit, with multipliers (the DAE form); only
+        // velocity constraints that integrate eliminate a coordinate.
         let c = match form {
-            ConstraintForm::Holonomic(f) => f.dt(),
+            ConstraintForm::Holonomic(f) => {
+                let c = f.dt();
+                if !c.is_zero() {
+                    kept.push((name, c));
+                }
+                continue;
+            }
             ConstraintForm::Velocity(c) => c,
         };
         if c.is_zero() {

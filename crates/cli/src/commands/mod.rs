@@ -1,6 +1,7 @@
 //! The subcommands, one module each.
 
 mod check;
+mod eom;
 mod expression;
 mod solve;
 
@@ -13,6 +14,7 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
     match command {
         Command::Solve { model } => solve::run(&model),
         Command::Check { model } => check::run(&model),
+        Command::Eom { model, format } => eom::run(&model, format),
         Command::Simplify {
             expr,
             format,
