@@ -18,7 +18,7 @@ fn main() {
 
 static RUN: AtomicUsize = AtomicUsize::new(0);
 
-#[divan::bench(args = [5, 10, 20, 40], sample_count = 5, sample_size = 1)]
+#[divan::bench(args = [5, 10, 20, 40], sample_count = 3, sample_size = 1)]
 fn derive_nlink(bencher: divan::Bencher, n: usize) {
     bencher
         .with_inputs(|| {

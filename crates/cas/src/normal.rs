@@ -300,11 +300,19 @@ impl Normalizer {
             Node::Number(n) => Rf::constant(n.clone()),
             Node::Symbol(_) | Node::Constant(_) => Rf::atom(plain_atom(e)),
             Node::Add(terms) => {
-                let mut acc = Rf::zero();
+                // Adding terms one by one into a sorted accumulator is quadratic; gather the
+                // polynomial parts and sort-merge them once, and add the fractions after.
+                let mut polynomial_terms = Vec::new();
+                let mut fractions = Rf::zero();
                 for t in terms.iter() {
-                    acc = acc.add(&self.rf(*t));
+                    let r = self.rf(*t);
+                    if r.den.is_one() {
+                        polynomial_terms.extend(r.num.terms);
+                    } else {
+                        fractions = fractions.add(&r);
+                    }
                 }
-                acc
+                Rf::from_poly(Poly::from_terms(polynomial_terms)).add(&fractions)
             }
             Node::Mul(factors) => {
                 let mut acc = Rf::one();

@@ -437,6 +437,22 @@ impl Poly {
         } else {
             (other, self)
         };
+        if let [(mono, coefficient)] = small.terms.as_slice() {
+            // Multiplying by one term keeps the lexicographic order of the other's terms, so
+            // no hashing or sorting is needed unless a rewriting rule applies.
+            let terms: Vec<(Monomial, Number)> = large
+                .terms
+                .iter()
+                .map(|(m, c)| (mul_monomials(m, mono), c.mul(coefficient)))
+                .collect();
+            if !rewrite
+                || !terms
+                    .iter()
+                    .any(|(m, _)| m.iter().any(|&(x, e)| needs_rewrite(x, e)))
+            {
+                return Poly { terms };
+            }
+        }
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
         acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
         let mut extra: Vec<Poly> = Vec::new();
