@@ -1,8 +1,8 @@
 //! `lagrange solve MODEL`: the whole solution, as far as the engine derives it today.
 //!
 //! Today that is the checked model (what the file describes and how many degrees of freedom
-//! it has); each later stage (equations of motion, reactions, equilibria, linearization,
-//! simulation, report) adds its section here as it lands.
+//! it has) and the equations of motion (Lagrange II); each later stage (reactions,
+//! equilibria, linearization, simulation, report) adds its section here as it lands.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -16,5 +16,6 @@ pub fn run(path: &Path) -> anyhow::Result<ExitCode> {
     println!("# {}\n", path.display());
     println!("## The system\n");
     println!("{}", m.summary().to_string().trim_end());
-    Ok(ExitCode::SUCCESS)
+    println!("\n## Equations of motion (Lagrange II)\n");
+    super::eom::run(path, crate::args::EomFormat::Text)
 }
