@@ -23,6 +23,20 @@ fn single_atom(x: Expr) -> Option<AtomId> {
     }
 }
 
+/// The atom ids of `atoms` and the normal form of `e`; `None` when an entry is not an atom
+/// or occurs in the denominator (then nothing can be read off term by term).
+fn atoms_and_normal_form(e: Expr, atoms: &[Expr]) -> Option<(Vec<AtomId>, Rf)> {
+    let ids: Vec<AtomId> = atoms
+        .iter()
+        .map(|a| single_atom(*a))
+        .collect::<Option<_>>()?;
+    let r = to_rf(e);
+    if ids.iter().any(|a| r.den.contains_atom(*a)) {
+        return None;
+    }
+    Some((ids, r))
+}
+
 impl Expr {
     /// The coefficient of `x^k` in the normal form, where `x` is a symbol or another atom
     /// (`sin θ`, `θ̈`). `None` when `x` is not an atom or occurs in the denominator.
@@ -47,14 +61,7 @@ impl Expr {
     /// Terms are ordered by decreasing total degree in `atoms`. `None` when an entry of
     /// `atoms` is not an atom or one occurs in the denominator.
     pub fn collect(self, atoms: &[Expr]) -> Option<Expr> {
-        let ids: Vec<AtomId> = atoms
-            .iter()
-            .map(|a| single_atom(*a))
-            .collect::<Option<_>>()?;
-        let r = to_rf(self);
-        if ids.iter().any(|a| r.den.contains_atom(*a)) {
-            return None;
-        }
+        let (ids, r) = atoms_and_normal_form(self, atoms)?;
         let mut groups: FxHashMap<Monomial, Vec<(Monomial, Number)>> = FxHashMap::default();
         let mut order: Vec<Monomial> = Vec::new();
         for (m, c) in &r.num.terms {
@@ -142,14 +149,7 @@ impl Expr {
     /// `None` when an entry of `atoms` is not an atom, occurs in the denominator, or occurs
     /// non-linearly (squared, or multiplied by another of them).
     pub fn affine_coefficients(self, atoms: &[Expr]) -> Option<(Vec<Expr>, Expr)> {
-        let ids: Vec<AtomId> = atoms
-            .iter()
-            .map(|a| single_atom(*a))
-            .collect::<Option<_>>()?;
-        let r = to_rf(self);
-        if ids.iter().any(|a| r.den.contains_atom(*a)) {
-            return None;
-        }
+        let (ids, r) = atoms_and_normal_form(self, atoms)?;
         let mut buckets: Vec<Vec<(Monomial, Number)>> = vec![Vec::new(); ids.len()];
         let mut rest: Vec<(Monomial, Number)> = Vec::new();
         for (m, c) in &r.num.terms {

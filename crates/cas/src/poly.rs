@@ -82,8 +82,9 @@ fn push_atom(table: &mut AtomTable, info: AtomInfo, kind_bits: u32) -> AtomId {
     id
 }
 
-/// The atom for a plain variable (a symbol, a constant, an opaque function application).
-pub(crate) fn plain_atom(expr: Expr) -> AtomId {
+/// The atom whose expression is `expr`, made with `kind` (and the id's kind bits) the first
+/// time it is asked for.
+fn intern_atom(expr: Expr, kind: impl FnOnce() -> AtomKind, kind_bits: u32) -> AtomId {
     if let Some(&id) = read_table().by_expr.get(&expr) {
         return id;
     }
@@ -92,14 +93,12 @@ pub(crate) fn plain_atom(expr: Expr) -> AtomId {
     if let Some(&id) = t.by_expr.get(&expr) {
         return id;
     }
-    push_atom(
-        &mut t,
-        AtomInfo {
-            expr,
-            kind: AtomKind::Plain,
-        },
-        KIND_PLAIN,
-    )
+    push_atom(&mut t, AtomInfo { expr, kind: kind() }, kind_bits)
+}
+
+/// The atom for a plain variable (a symbol, a constant, an opaque function application).
+pub(crate) fn plain_atom(expr: Expr) -> AtomId {
+    intern_atom(expr, || AtomKind::Plain, KIND_PLAIN)
 }
 
 /// The atoms `(sin(angle), cos(angle))`.
@@ -141,22 +140,7 @@ pub(crate) fn trig_atoms(angle: Expr) -> (AtomId, AtomId) {
 
 /// The atom `base^(1/q)` whose expression is `expr`.
 pub(crate) fn root_atom(expr: Expr, base: Poly, q: u32) -> AtomId {
-    if let Some(&id) = read_table().by_expr.get(&expr) {
-        return id;
-    }
-    let _g = creation_lock().lock().unwrap_or_else(|e| e.into_inner());
-    let mut t = atom_table().write().unwrap_or_else(|e| e.into_inner());
-    if let Some(&id) = t.by_expr.get(&expr) {
-        return id;
-    }
-    push_atom(
-        &mut t,
-        AtomInfo {
-            expr,
-            kind: AtomKind::Root { base, q },
-        },
-        KIND_ROOT,
-    )
+    intern_atom(expr, || AtomKind::Root { base, q }, KIND_ROOT)
 }
 
 /// The information about an atom.
