@@ -9,7 +9,7 @@
 use rustc_hash::FxHashMap;
 
 use crate::expr::{Expr, Func, Node, Symbol, SymbolKind};
-use crate::normal::{from_rf, Normalizer, Rf};
+use crate::normal::{cached_rf, from_rf, Normalizer, Rf};
 use crate::number::Number;
 use crate::poly::{atom_info, plain_atom, AtomId, AtomKind, Monomial, Poly};
 
@@ -40,6 +40,10 @@ impl Deriver {
     }
 
     fn expr(&mut self, e: Expr) -> Rf {
+        // Large normal forms keep their working form; borrow it rather than copy it.
+        if let Some(r) = cached_rf(e) {
+            return self.rf(&r);
+        }
         let r = self.normalizer.rf(e);
         self.rf(&r)
     }
@@ -63,7 +67,7 @@ impl Deriver {
         let mut order: Vec<AtomId> = Vec::new();
         for (m, c) in &p.terms {
             for (i, &(a, e)) in m.iter().enumerate() {
-                if self.atom(a).is_zero() {
+                if self.atom_is_constant(a) {
                     continue;
                 }
                 let mut reduced = m.clone();
@@ -82,13 +86,31 @@ impl Deriver {
                     .push((reduced, coefficient));
             }
         }
-        let mut result = Rf::zero();
+        // Σ_a ∂P/∂a · da: polynomial parts are gathered and sort-merged once (adding them one
+        // by one would copy the growing sum for every atom); fractions are added after.
+        let mut terms = Vec::new();
+        let mut fractions = Rf::zero();
         for a in order {
-            let partial = Poly::from_terms(buckets.remove(&a).unwrap_or_default());
+            // Removing one factor `a` from distinct monomials leaves distinct monomials, so the
+            // bucket is a valid (unsorted) polynomial; the final merge sorts.
+            let partial = Poly {
+                terms: buckets.remove(&a).unwrap_or_default(),
+            };
             let da = self.atom(a);
-            result = result.add(&Rf::from_poly(partial).mul(&da));
+            if da.den.is_one() {
+                terms.extend(partial.mul(&da.num).terms);
+            } else {
+                fractions = fractions.add(&Rf::from_poly(Poly::from_terms(partial.terms)).mul(&da));
+            }
         }
-        result
+        Rf::from_poly(Poly::from_terms(terms)).add(&fractions)
+    }
+
+    fn atom_is_constant(&mut self, a: AtomId) -> bool {
+        if let Some(r) = self.atoms.get(&a) {
+            return r.is_zero();
+        }
+        self.atom(a).is_zero()
     }
 
     fn atom(&mut self, a: AtomId) -> Rf {

@@ -171,7 +171,7 @@ fn node_of(id: u32) -> &'static Node {
         .expect("an Expr handle always points at an initialised node")
 }
 
-fn intern(node: Node) -> Expr {
+pub(crate) fn intern(node: Node) -> Expr {
     let hasher = FxBuildHasher;
     let hash = hasher.hash_one(&node);
     // A poisoned lock only means another thread panicked while holding it; the table itself
@@ -208,7 +208,7 @@ pub fn arena_len() -> usize {
 
 struct Names {
     by_text: FxHashMap<&'static str, u32>,
-    texts: Vec<&'static str>,
+    len: u32,
 }
 
 fn names() -> &'static Mutex<Names> {
@@ -216,9 +216,24 @@ fn names() -> &'static Mutex<Names> {
     NAMES.get_or_init(|| {
         Mutex::new(Names {
             by_text: FxHashMap::default(),
-            texts: Vec::new(),
+            len: 0,
         })
     })
+}
+
+/// The texts of the names, append-only like the expression arena, so that reading a name (the
+/// structural order compares names in every sort) takes no lock.
+type NameChunk = Box<[OnceLock<&'static str>]>;
+
+fn name_texts() -> &'static [OnceLock<NameChunk>] {
+    static TEXTS: OnceLock<Box<[OnceLock<NameChunk>]>> = OnceLock::new();
+    TEXTS.get_or_init(|| (0..CHUNK_COUNT).map(|_| OnceLock::new()).collect())
+}
+
+fn name_slot(id: u32) -> &'static OnceLock<&'static str> {
+    let chunk = name_texts()[(id >> CHUNK_BITS) as usize]
+        .get_or_init(|| (0..CHUNK_SIZE).map(|_| OnceLock::new()).collect());
+    &chunk[(id as usize) & (CHUNK_SIZE - 1)]
 }
 
 impl Name {
@@ -229,15 +244,24 @@ impl Name {
             return Name(id);
         }
         let leaked: &'static str = Box::leak(text.to_owned().into_boxed_str());
-        let id = n.texts.len() as u32;
-        n.texts.push(leaked);
+        let id = n.len;
+        assert!(
+            ((id >> CHUNK_BITS) as usize) < CHUNK_COUNT,
+            "name table exhausted ({id} names)"
+        );
+        // The text is stored before the id is handed out, so a reader always finds it.
+        let _ = name_slot(id).set(leaked);
+        n.len += 1;
         n.by_text.insert(leaked, id);
         Name(id)
     }
 
     /// The text of the name.
     pub fn as_str(self) -> &'static str {
-        names().lock().unwrap_or_else(|e| e.into_inner()).texts[self.0 as usize]
+        name_slot(self.0)
+            .get()
+            .copied()
+            .expect("a Name always points at a stored text")
     }
 }
 
@@ -789,14 +813,16 @@ impl Func {
 impl std::ops::Add for Expr {
     type Output = Expr;
     fn add(self, rhs: Expr) -> Expr {
-        Expr::add_all([self, rhs])
+        crate::normal::combine_normal_forms(self, rhs, false)
+            .unwrap_or_else(|| Expr::add_all([self, rhs]))
     }
 }
 
 impl std::ops::Sub for Expr {
     type Output = Expr;
     fn sub(self, rhs: Expr) -> Expr {
-        Expr::add_all([self, -rhs])
+        crate::normal::combine_normal_forms(self, rhs, true)
+            .unwrap_or_else(|| Expr::add_all([self, -rhs]))
     }
 }
 

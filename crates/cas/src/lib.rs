@@ -36,6 +36,7 @@ mod ops;
 pub mod parse;
 mod poly;
 pub mod print;
+pub mod solve;
 
 pub use calculus::NotASymbol;
 pub use eval::EvalError;
@@ -43,3 +44,4 @@ pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
 pub use matrix::{Matrix, SolveError};
 pub use number::Number;
 pub use parse::{parse, ParseContext, ParseError};
+pub use solve::{solve_for, Condition, Solution, Solved};

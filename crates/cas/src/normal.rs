@@ -23,14 +23,17 @@
 //! fraction whose denominator is a long trigonometric sum makes every later operation on it
 //! expensive; a GCD gives up (leaving the fraction less reduced but equal) past a work budget.
 
-use std::sync::{Mutex, OnceLock};
+use std::cmp::Ordering;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
-use crate::expr::{Constant, Expr, Func, Node};
+use crate::expr::{intern, Constant, Expr, Func, Node};
 use crate::number::Number;
 use crate::poly::{
-    self, atom_expr, gcd, plain_atom, root_atom, trig_atoms, AtomId, AtomKind, Monomial, Poly,
+    self, atom_expr, atom_exprs, gcd, plain_atom, root_atom, trig_atoms, AtomId, AtomKind,
+    Monomial, Poly,
 };
 
 /// A fraction of polynomials in canonical form (see the module documentation).
@@ -267,6 +270,178 @@ pub(crate) fn monomial_to_expr(m: &Monomial) -> Expr {
 }
 
 pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
+    // Distinct monomials of atoms that are symbols, constants or function applications are
+    // already what `add_all`/`mul_all` would make of them (no two share a base, no power
+    // splits), so the canonical tree is built directly. Its operands must be sorted by
+    // `Expr::cmp_structure`; rather than compare trees, the atoms are ranked once and every
+    // factor and term is sorted by a key that orders exactly as `cmp_structure` would.
+    // Anything else (roots, symbolic powers) takes the general constructors.
+    let mut ids: Vec<AtomId> = p
+        .terms
+        .iter()
+        .flat_map(|(m, _)| m.iter().map(|&(a, _)| a))
+        .collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let exprs = atom_exprs(&ids);
+    let mut classes = Vec::with_capacity(exprs.len());
+    for e in &exprs {
+        classes.push(match e.node() {
+            Node::Symbol(_) => 1u8,
+            Node::Constant(_) => 2,
+            Node::Func(..) => 6,
+            _ => return general_poly_to_expr(p),
+        });
+    }
+    let mut by_structure: Vec<usize> = (0..ids.len()).collect();
+    by_structure.sort_by(|&i, &j| exprs[i].cmp_structure(exprs[j]));
+    let mut ranks = vec![0u32; ids.len()];
+    for (rank, &i) in by_structure.iter().enumerate() {
+        ranks[i] = rank as u32;
+    }
+    let mut keyed: Vec<(TermKey, Expr)> = p
+        .terms
+        .iter()
+        .map(|(m, c)| {
+            let mut factors: SmallVec<[(FactorKey, Expr); 6]> = m
+                .iter()
+                .map(|&(a, e)| {
+                    let i = ids.binary_search(&a).unwrap_or(0);
+                    let base = exprs[i];
+                    if e == 1 {
+                        (FactorKey(classes[i], ranks[i], 1), base)
+                    } else {
+                        let power = intern(Node::Pow([base, Expr::int(i64::from(e))]));
+                        (FactorKey(3, ranks[i], e), power)
+                    }
+                })
+                .collect();
+            factors.sort_unstable_by_key(|f| f.0);
+            let with_number = !c.is_exact_one() || factors.is_empty();
+            let key = match (with_number, factors.as_slice()) {
+                (true, []) => TermKey::Number(c.clone()),
+                (false, [(f, _)]) => TermKey::Factor(*f),
+                _ => TermKey::Product(
+                    with_number.then(|| c.clone()),
+                    factors.iter().map(|f| f.0).collect(),
+                ),
+            };
+            let mut operands: Vec<Expr> = Vec::with_capacity(factors.len() + 1);
+            if with_number {
+                operands.push(Expr::number(c.clone()));
+            }
+            operands.extend(factors.iter().map(|f| f.1));
+            let term = match operands.len() {
+                1 => operands[0],
+                _ => intern(Node::Mul(operands.into())),
+            };
+            (key, term)
+        })
+        .collect();
+    keyed.sort_by(|a, b| a.0.cmp(&b.0));
+    let terms: Vec<Expr> = keyed.into_iter().map(|(_, t)| t).collect();
+    match terms.len() {
+        0 => Expr::zero(),
+        1 => terms[0],
+        _ => intern(Node::Add(terms.into())),
+    }
+}
+
+/// A factor `atom^e` in the structural order: the node's rank (symbol 1, constant 2, power 3,
+/// function 6), then the atom's rank among the polynomial's atoms, then the exponent.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+struct FactorKey(u8, u32, u32);
+
+/// A term in the structural order of [`Expr::cmp_structure`].
+enum TermKey {
+    /// A number alone.
+    Number(Number),
+    /// A single factor with coefficient one.
+    Factor(FactorKey),
+    /// A product: the coefficient (absent when one) and the sorted factors.
+    Product(Option<Number>, SmallVec<[FactorKey; 6]>),
+}
+
+impl TermKey {
+    fn node_rank(&self) -> u8 {
+        match self {
+            TermKey::Number(_) => 0,
+            TermKey::Factor(f) => f.0,
+            TermKey::Product(..) => 4,
+        }
+    }
+}
+
+impl Ord for TermKey {
+    fn cmp(&self, other: &TermKey) -> Ordering {
+        match self.node_rank().cmp(&other.node_rank()) {
+            Ordering::Equal => {}
+            o => return o,
+        }
+        match (self, other) {
+            (TermKey::Number(x), TermKey::Number(y)) => x.total_cmp(y),
+            (TermKey::Factor(x), TermKey::Factor(y)) => x.cmp(y),
+            (TermKey::Product(cx, fx), TermKey::Product(cy, fy)) => {
+                // As `cmp_slices`: from the last operand; the coefficient is the first operand
+                // and a number sorts before any factor.
+                let len_x = fx.len() + usize::from(cx.is_some());
+                let len_y = fy.len() + usize::from(cy.is_some());
+                for k in 0..len_x.min(len_y) {
+                    let a = operand_from_end(cx, fx, k);
+                    let b = operand_from_end(cy, fy, k);
+                    let o = match (a, b) {
+                        (Operand::Number(x), Operand::Number(y)) => x.total_cmp(y),
+                        (Operand::Number(_), Operand::Factor(_)) => Ordering::Less,
+                        (Operand::Factor(_), Operand::Number(_)) => Ordering::Greater,
+                        (Operand::Factor(x), Operand::Factor(y)) => x.cmp(&y),
+                    };
+                    if o != Ordering::Equal {
+                        return o;
+                    }
+                }
+                len_x.cmp(&len_y)
+            }
+            _ => Ordering::Equal,
+        }
+    }
+}
+
+impl PartialOrd for TermKey {
+    fn partial_cmp(&self, other: &TermKey) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl PartialEq for TermKey {
+    fn eq(&self, other: &TermKey) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for TermKey {}
+
+enum Operand<'a> {
+    Number(&'a Number),
+    Factor(FactorKey),
+}
+
+/// The `k`-th operand of a product counted from the last.
+fn operand_from_end<'a>(
+    coefficient: &'a Option<Number>,
+    factors: &[FactorKey],
+    k: usize,
+) -> Operand<'a> {
+    if k < factors.len() {
+        Operand::Factor(factors[factors.len() - 1 - k])
+    } else {
+        match coefficient {
+            Some(c) => Operand::Number(c),
+            None => Operand::Factor(factors[0]),
+        }
+    }
+}
+
+fn general_poly_to_expr(p: &Poly) -> Expr {
     Expr::add_all(p.terms.iter().map(|(m, c)| {
         let mut factors = Vec::with_capacity(m.len() + 1);
         factors.push(Expr::number(c.clone()));
@@ -289,6 +464,9 @@ impl Normalizer {
     pub(crate) fn rf(&mut self, e: Expr) -> Rf {
         if let Some(r) = self.memo.get(&e) {
             return r.clone();
+        }
+        if let Some(r) = cached_rf(e) {
+            return Rf::clone(&r);
         }
         let r = self.convert(e);
         self.memo.insert(e, r.clone());
@@ -329,8 +507,14 @@ impl Normalizer {
         }
     }
 
+    /// An application the algebra does not rewrite, as an atom of its own. The constructors
+    /// fold literal arguments (`ln 1 = 0`, `tan 0 = 0`), and a number must never become an
+    /// atom: its printed tree would be the number while the polynomial kept a variable.
     fn opaque(&mut self, e: Expr) -> Rf {
-        Rf::atom(plain_atom(e))
+        match e.node() {
+            Node::Number(n) => Rf::constant(n.clone()),
+            _ => Rf::atom(plain_atom(e)),
+        }
     }
 
     fn power(&mut self, base: Expr, exp: Expr) -> Rf {
@@ -563,6 +747,13 @@ impl Normalizer {
                 return exact;
             }
         }
+        // A numeric angle (`cos(3/10)`) is its own atom: writing it as a multiple of 1/10 is
+        // as canonical but prints a triple-angle polynomial nobody wants to read.
+        if m.is_empty() && den.is_none() {
+            let (s_id, c_id) = trig_atoms(Expr::number(c.abs()));
+            let sign = if c.is_negative() { -1 } else { 1 };
+            return multiple_angle(&Rf::atom(c_id), &Rf::atom(s_id), sign);
+        }
         // c = n/q: the angle unit is m/q, taken `n` times.
         let (angle_unit, multiple) = if q == 1 {
             (unit, n)
@@ -699,6 +890,23 @@ fn normal_memo() -> &'static Mutex<FxHashMap<Expr, Expr>> {
     MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
 }
 
+/// The working form of every expression [`from_rf`] has built. Mechanics differentiates the same
+/// large normal forms many times (the Lagrangian once per rate and per coordinate); without this
+/// each call would convert the whole tree back to polynomials.
+fn rf_memo() -> &'static Mutex<FxHashMap<Expr, Arc<Rf>>> {
+    static MEMO: OnceLock<Mutex<FxHashMap<Expr, Arc<Rf>>>> = OnceLock::new();
+    MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
+}
+
+/// The remembered working form of a canonical expression, if [`from_rf`] built it.
+pub(crate) fn cached_rf(e: Expr) -> Option<Arc<Rf>> {
+    rf_memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .get(&e)
+        .cloned()
+}
+
 /// The normal form of `e` as an [`Rf`].
 pub(crate) fn to_rf(e: Expr) -> Rf {
     Normalizer::default().rf(e)
@@ -711,8 +919,32 @@ pub(crate) fn from_rf(r: &Rf) -> Expr {
         .lock()
         .unwrap_or_else(|p| p.into_inner())
         .insert(e, e);
+    // Small forms are cheap to rebuild; remembering only the large ones bounds the memory.
+    if r.num.terms.len() + r.den.terms.len() > CACHED_RF_MIN_TERMS {
+        rf_memo()
+            .lock()
+            .unwrap_or_else(|p| p.into_inner())
+            .entry(e)
+            .or_insert_with(|| Arc::new(r.clone()));
+    }
     e
 }
+
+/// `a ± b` in normal form when both are large normal forms with a remembered working form.
+///
+/// Adding two long sums as trees re-interns and re-sorts every term, and the next `normal()`
+/// converts them all back; the equations of motion are built from such differences
+/// (`d/dt ∂L/∂q̇ − ∂L/∂q`), so the operators take this shortcut. The result is the normal
+/// form of the sum, which is also a canonical tree for it.
+pub(crate) fn combine_normal_forms(a: Expr, b: Expr, subtract: bool) -> Option<Expr> {
+    let ra = cached_rf(a)?;
+    let rb = cached_rf(b)?;
+    let sum = if subtract { ra.sub(&rb) } else { ra.add(&rb) };
+    Some(from_rf(&sum))
+}
+
+/// Normal forms with more terms than this keep their working form (see [`rf_memo`]).
+const CACHED_RF_MIN_TERMS: usize = 8;
 
 impl Expr {
     /// The canonical normal form (see the module documentation of `normal`): equal
@@ -755,5 +987,51 @@ impl Expr {
     /// Whether the expression is the literal `π`.
     pub fn is_pi(self) -> bool {
         matches!(self.node(), Node::Constant(Constant::Pi))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small deterministic generator (xorshift), so the test needs no dependency.
+    struct Rng(u64);
+
+    impl Rng {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0 % n
+        }
+    }
+
+    #[test]
+    fn direct_tree_building_equals_the_general_constructors() {
+        // The fast path of `poly_to_expr` sorts by keys that must order exactly as
+        // `cmp_structure`; the general constructors sort by `cmp_structure` itself.
+        let names = ["a", "b", "zeta", "x1", "x10", "x2"];
+        let mut atoms: Vec<Expr> = names.iter().map(|n| Expr::symbol(n)).collect();
+        atoms.push(Expr::coordinate("theta"));
+        atoms.push(Expr::rate("theta", 1));
+        atoms.push(Expr::rate("theta", 2));
+        atoms.push(Expr::pi());
+        atoms.push(Expr::coordinate("theta").sin());
+        atoms.push(Expr::coordinate("phi").cos());
+        atoms.push(Expr::symbol("a").exp());
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..300 {
+            let terms = 1 + rng.below(6);
+            let e = Expr::add_all((0..terms).map(|_| {
+                let c = Expr::int(rng.below(7) as i64 - 3);
+                let factors = rng.below(4);
+                c * Expr::mul_all((0..factors).map(|_| {
+                    let a = atoms[rng.below(atoms.len() as u64) as usize];
+                    a.powi(1 + rng.below(3) as i64)
+                }))
+            }));
+            let r = to_rf(e);
+            assert_eq!(poly_to_expr(&r.num), general_poly_to_expr(&r.num), "{e:?}");
+        }
     }
 }

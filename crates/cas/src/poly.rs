@@ -85,6 +85,7 @@ fn push_atom(table: &mut AtomTable, info: AtomInfo, kind_bits: u32) -> AtomId {
 /// The atom whose expression is `expr`, made with `kind` (and the id's kind bits) the first
 /// time it is asked for.
 fn intern_atom(expr: Expr, kind: impl FnOnce() -> AtomKind, kind_bits: u32) -> AtomId {
+    debug_assert!(expr.as_number().is_none(), "a number is not an atom: {expr:?}");
     if let Some(&id) = read_table().by_expr.get(&expr) {
         return id;
     }
@@ -151,6 +152,14 @@ pub(crate) fn atom_info(id: AtomId) -> AtomInfo {
 /// The expression of an atom.
 pub(crate) fn atom_expr(id: AtomId) -> Expr {
     read_table().infos[(id & INDEX_MASK) as usize].expr
+}
+
+/// The expressions of several atoms, under one lock.
+pub(crate) fn atom_exprs(ids: &[AtomId]) -> Vec<Expr> {
+    let table = read_table();
+    ids.iter()
+        .map(|&id| table.infos[(id & INDEX_MASK) as usize].expr)
+        .collect()
 }
 
 fn needs_rewrite(id: AtomId, exp: u32) -> bool {

@@ -160,3 +160,37 @@ fn floats_stay_floats_and_combine() {
     assert_eq!(e.normal(), (Expr::float(0.75) * x).normal());
     assert!(e.normal().as_number().is_none());
 }
+
+#[test]
+fn numeric_angles_are_atoms_not_multiples_of_a_smaller_angle() {
+    let r = |n: i64, d: i64| Expr::rational(n, d).expect("non-zero denominator");
+    // cos(3/10) stays cos(3/10): not 4 cos³(1/10) − 3 cos(1/10).
+    assert_eq!(r(3, 10).cos().normal(), r(3, 10).cos());
+    // Parity is still applied, and the Pythagorean identity still holds.
+    assert!((r(-3, 10).cos() - r(3, 10).cos()).is_zero());
+    assert!((r(-3, 10).sin() + r(3, 10).sin()).is_zero());
+    assert!((r(3, 10).sin().powi(2) + r(3, 10).cos().powi(2) - 1).is_zero());
+    // An angle sum with a numeric part expands over it.
+    let a = q("alpha");
+    let sum = (a + r(3, 10)).cos() - (a.cos() * r(3, 10).cos() - a.sin() * r(3, 10).sin());
+    assert!(sum.is_zero());
+    assert!((r(3, 10).cos() - r(1, 10).cos())
+        .normal()
+        .as_number()
+        .is_none());
+}
+
+#[test]
+fn a_function_whose_argument_normalises_to_a_literal_is_that_number() {
+    // ln((x + 1)² − x² − 2x) is ln 1 = 0 once the argument is normalised; it used to become an
+    // atom printed as `0` while the algebra kept it as a variable, so sums containing it were
+    // not recognised as zero (and the cached working form of `0` was poisoned for every caller).
+    let x = s("x");
+    let y = s("y");
+    let log_one = ((x + 1).powi(2) - x.powi(2) - 2 * x).ln();
+    assert!(log_one.is_zero());
+    assert_eq!((log_one * y + y).normal(), y);
+    assert!(Expr::zero().is_zero());
+    let abs_zero = ((x + 1).powi(2) - x.powi(2) - 2 * x - 1).abs();
+    assert!(abs_zero.is_zero());
+}

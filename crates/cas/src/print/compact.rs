@@ -44,14 +44,34 @@ impl Compactor {
             }
             Node::Mul(f) => Expr::mul_all(f.iter().map(|x| self.run(*x)).collect::<Vec<_>>()),
             Node::Pow([b, x]) => self.run(*b).pow(self.run(*x)),
-            Node::Func(f, args) => Expr::func(*f, args.iter().map(|a| self.run(*a)).collect()),
+            Node::Func(f, args) => {
+                let args: Vec<Expr> = args.iter().map(|a| self.run(*a)).collect();
+                even_odd(*f, args)
+            }
         };
         self.memo.insert(e, r);
         r
     }
 }
 
-fn regroup_sum(mut terms: Vec<Expr>) -> Expr {
+/// `cos(−u) = cos u`, `sin(−u) = −sin u`, `tan(−u) = −tan u`: an angle is printed with a
+/// positive leading coefficient, as people write it.
+fn even_odd(f: Func, args: Vec<Expr>) -> Expr {
+    if let (Func::Sin | Func::Cos | Func::Tan, [angle]) = (f, args.as_slice()) {
+        let (c, _) = split_coefficient(*angle);
+        if c.is_negative() {
+            let positive = -*angle;
+            return match f {
+                Func::Cos => positive.cos(),
+                _ => -Expr::func(f, vec![positive]),
+            };
+        }
+    }
+    Expr::func(f, args)
+}
+
+fn regroup_sum(terms: Vec<Expr>) -> Expr {
+    let mut terms = prefer_sine_squares(terms);
     fold_trig(&mut terms);
     let terms = collect_by_time_part(terms);
     pull_common_factor(terms)
@@ -73,87 +93,176 @@ fn trig(e: Expr) -> Option<(Func, Expr)> {
     }
 }
 
+/// Rewrites even powers of `cos a` with `cos² a = 1 − sin² a` when that leaves the sum with
+/// fewer terms: the normal form keeps only cosines, so the seed's `−sin² α` arrives as
+/// `cos² α − 1`.
+fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
+    let mut angles: Vec<Expr> = Vec::new();
+    for t in &terms {
+        for f in factors_of(split_coefficient(*t).1) {
+            let (base, exp) = split_power(f);
+            if let (Some((Func::Cos, a)), Some(k)) = (trig(base), exp.as_number()) {
+                if k.to_i64().is_some_and(|k| k >= 2) && !angles.contains(&a) {
+                    angles.push(a);
+                }
+            }
+        }
+    }
+    for angle in angles {
+        let cos = angle.cos();
+        let sin_squared = angle.sin().powi(2);
+        let mut rewritten = Vec::with_capacity(terms.len());
+        for t in &terms {
+            let mut power = 0;
+            let mut rest = Vec::new();
+            for f in factors_of(*t) {
+                let (base, exp) = split_power(f);
+                match exp.as_number().and_then(Number::to_i64) {
+                    Some(k) if base == cos && k > 0 => power = k,
+                    _ => rest.push(f),
+                }
+            }
+            let rest = Expr::mul_all(rest);
+            // cos^p = cos^r (1 − sin²)^j with p = 2j + r.
+            let (j, r) = (power / 2, power % 2);
+            let mut binomial = 1i64;
+            for i in 0..=j {
+                let sign = if i % 2 == 0 { 1 } else { -1 };
+                rewritten
+                    .push(Expr::int(sign * binomial) * rest * cos.powi(r) * sin_squared.powi(i));
+                binomial = binomial * (j - i) / (i + 1);
+            }
+        }
+        let sum = Expr::add_all(rewritten);
+        let new_terms = match sum.node() {
+            Node::Add(t) => t.to_vec(),
+            _ if sum.is_literal_zero() => Vec::new(),
+            _ => vec![sum],
+        };
+        if new_terms.len() < terms.len() {
+            terms = new_terms;
+        }
+    }
+    terms
+}
+
 /// Folds pairs of terms that are an expanded `cos(a ± b)` or `sin(a ± b)`, until none is left.
+///
+/// Each pass indexes the terms once and folds every pair it finds (a term changed in this pass
+/// is neither folded again nor used as a partner until the next pass), so a sum of `T` terms
+/// costs `O(T)` per pass rather than `O(T)` per fold.
 fn fold_trig(terms: &mut Vec<Expr>) {
-    // Each fold removes a term, so this terminates; the bound is a second guarantee.
+    // Each pass that changes something removes a term, so this terminates; the bound is a
+    // second guarantee.
     for _ in 0..terms.len() {
-        if !fold_one(terms) {
+        if !fold_pass(terms) {
             return;
         }
     }
 }
 
-fn fold_one(terms: &mut Vec<Expr>) -> bool {
+fn fold_pass(terms: &mut Vec<Expr>) -> bool {
     let split: Vec<(Number, Expr)> = terms.iter().map(|t| split_coefficient(*t)).collect();
     let index: FxHashMap<Expr, usize> = split
         .iter()
         .enumerate()
         .map(|(i, (_, rest))| (*rest, i))
         .collect();
-    for (i, (ci, rest)) in split.iter().enumerate() {
-        let factors = factors_of(*rest);
-        for p in 0..factors.len() {
-            let Some((fp, a)) = trig(factors[p]) else {
-                continue;
-            };
-            for q in 0..factors.len() {
-                let Some((fq, b)) = trig(factors[q]) else {
-                    continue;
-                };
-                if p == q || a == b {
-                    continue;
-                }
-                // cos a cos b pairs with sin a sin b; sin a cos b pairs with cos a sin b.
-                let (pa, pb) = match (fp, fq) {
-                    (Func::Cos, Func::Cos) if p < q => (a.sin(), b.sin()),
-                    (Func::Sin, Func::Cos) => (a.cos(), b.sin()),
-                    _ => continue,
-                };
-                let others: Vec<Expr> = factors
-                    .iter()
-                    .enumerate()
-                    .filter(|&(k, _)| k != p && k != q)
-                    .map(|(_, f)| *f)
-                    .collect();
-                let partner = Expr::mul_all(others.iter().copied().chain([pa, pb]));
-                let Some(&j) = index.get(&partner) else {
-                    continue;
-                };
-                if j == i {
-                    continue;
-                }
-                let cj = &split[j].0;
-                let same = cj == ci;
-                if !same && *cj != ci.neg() {
-                    continue;
-                }
-                let folded = match (fp, same) {
-                    // cos a cos b + sin a sin b = cos(a − b); with − it is cos(a + b).
-                    (Func::Cos, true) => (a - b).cos(),
-                    (Func::Cos, false) => (a + b).cos(),
-                    // sin a cos b + cos a sin b = sin(a + b); with − it is sin(a − b).
-                    (_, true) => (a + b).sin(),
-                    (_, false) => (a - b).sin(),
-                };
-                // sin is odd: write `−K sin(b − a)` as `K sin(a − b)` with the arguments in
-                // their canonical order, as people write `sin(θ1 − θ2)`.
-                let (coefficient, folded) = match (fp, same) {
-                    (Func::Sin, false) if a.cmp_structure(b).is_gt() => (ci.neg(), (b - a).sin()),
-                    _ => (ci.clone(), folded),
-                };
-                let new = Expr::mul_all(
-                    [Expr::number(coefficient)]
-                        .into_iter()
-                        .chain(others)
-                        .chain([folded]),
-                );
-                terms[i] = new;
-                terms.remove(j);
-                return true;
-            }
+    // `None`: removed; `Some(true)`: changed in this pass.
+    let mut state: Vec<Option<bool>> = vec![Some(false); terms.len()];
+    let mut changed = false;
+    for i in 0..terms.len() {
+        if state[i] != Some(false) {
+            continue;
+        }
+        let (ci, rest) = &split[i];
+        if let Some((j, new)) = fold_partner(i, ci, *rest, &split, &index, &state) {
+            terms[i] = new;
+            state[i] = Some(true);
+            state[j] = None;
+            changed = true;
         }
     }
-    false
+    if changed {
+        let mut k = 0;
+        terms.retain(|_| {
+            k += 1;
+            state[k - 1].is_some()
+        });
+    }
+    changed
+}
+
+/// The partner of term `i` (coefficient `ci`, the rest `rest`) in an expanded `cos(a ± b)` or
+/// `sin(a ± b)`, and the folded term.
+fn fold_partner(
+    i: usize,
+    ci: &Number,
+    rest: Expr,
+    split: &[(Number, Expr)],
+    index: &FxHashMap<Expr, usize>,
+    state: &[Option<bool>],
+) -> Option<(usize, Expr)> {
+    let factors = factors_of(rest);
+    for p in 0..factors.len() {
+        let Some((fp, a)) = trig(factors[p]) else {
+            continue;
+        };
+        for q in 0..factors.len() {
+            let Some((fq, b)) = trig(factors[q]) else {
+                continue;
+            };
+            if p == q || a == b {
+                continue;
+            }
+            // cos a cos b pairs with sin a sin b; sin a cos b pairs with cos a sin b.
+            let (pa, pb) = match (fp, fq) {
+                (Func::Cos, Func::Cos) if p < q => (a.sin(), b.sin()),
+                (Func::Sin, Func::Cos) => (a.cos(), b.sin()),
+                _ => continue,
+            };
+            let others: Vec<Expr> = factors
+                .iter()
+                .enumerate()
+                .filter(|&(k, _)| k != p && k != q)
+                .map(|(_, f)| *f)
+                .collect();
+            let partner = Expr::mul_all(others.iter().copied().chain([pa, pb]));
+            let Some(&j) = index.get(&partner) else {
+                continue;
+            };
+            if j == i || state[j] != Some(false) {
+                continue;
+            }
+            let cj = &split[j].0;
+            let same = cj == ci;
+            if !same && *cj != ci.neg() {
+                continue;
+            }
+            let folded = match (fp, same) {
+                // cos a cos b + sin a sin b = cos(a − b); with − it is cos(a + b).
+                (Func::Cos, true) => (a - b).cos(),
+                (Func::Cos, false) => (a + b).cos(),
+                // sin a cos b + cos a sin b = sin(a + b); with − it is sin(a − b).
+                (_, true) => (a + b).sin(),
+                (_, false) => (a - b).sin(),
+            };
+            // sin is odd: write `−K sin(b − a)` as `K sin(a − b)` with the arguments in
+            // their canonical order, as people write `sin(θ1 − θ2)`.
+            let (coefficient, folded) = match (fp, same) {
+                (Func::Sin, false) if a.cmp_structure(b).is_gt() => (ci.neg(), (b - a).sin()),
+                _ => (ci.clone(), folded),
+            };
+            let new = Expr::mul_all(
+                [Expr::number(coefficient)]
+                    .into_iter()
+                    .chain(others)
+                    .chain([folded]),
+            );
+            return Some((j, new));
+        }
+    }
+    None
 }
 
 /// Collects terms that share their time-dependent factors: `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`.
@@ -267,5 +376,13 @@ fn pull_common_factor(terms: Vec<Expr>) -> Expr {
             )
         })
         .collect();
-    Expr::mul_all(divisor.into_iter().chain([Expr::add_all(inner)]))
+    // Without the common factor, `cos² α` may now be worth writing as `1 − sin² α`.
+    let before = inner.len();
+    let inner = prefer_sine_squares(inner);
+    let inner = if inner.len() < before {
+        regroup_sum(inner)
+    } else {
+        Expr::add_all(inner)
+    };
+    Expr::mul_all(divisor.into_iter().chain([inner]))
 }

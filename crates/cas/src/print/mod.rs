@@ -213,6 +213,36 @@ mod tests {
     }
 
     #[test]
+    fn rates_of_multi_letter_names_take_primes() {
+        assert_eq!(to_unicode(Expr::rate("th1", 1)), "th1'");
+        assert_eq!(to_unicode(Expr::rate("ab", 2)), "ab''");
+        // One letter or a Greek name keeps Newton's dots.
+        assert_eq!(to_unicode(Expr::rate("x1", 1)), "ẋ1");
+        assert_eq!(to_unicode(Expr::rate("theta1", 2)), "θ̈1");
+        assert_eq!(to_unicode(Expr::rate("q", 1)), "q̇");
+    }
+
+    #[test]
+    fn sine_squares_and_angle_signs_as_people_write_them() {
+        let (a, th, iy, iz) = (s("alpha"), q("theta"), s("I_y"), s("I_z"));
+        // The normal form keeps cosines only; people write −sin² α.
+        assert_eq!(to_unicode((a.cos().powi(2) - 1).normal()), "−sin² α");
+        // After the common factor cos² α is out, the rest folds into sin² α.
+        let e = (iy - iz) * a.cos().powi(2) - (iy - iz) * a.cos().powi(4);
+        assert_eq!(to_unicode(e.normal()), "(I_y − I_z) sin² α cos² α");
+        // Not rewritten when it does not shorten the sum.
+        assert_eq!(to_unicode((a.cos().powi(2) + th).normal()), "θ + cos² α");
+        // The rolling cone's eliminated coordinate: −sin α θ/(cos² α − 1) = θ/sin α.
+        let phi = -(a.sin() * th) / (a.cos().powi(2) - 1);
+        assert_eq!(to_unicode(phi.normal()), "θ/sin α");
+        // Even and odd: cos(−u) = cos u, sin(−u) = −sin u.
+        assert_eq!(
+            to_unicode((-th / a).cos() * (-th / a).sin()),
+            "−sin(θ/α) cos(θ/α)"
+        );
+    }
+
+    #[test]
     fn small_forms_in_each_dialect() {
         let (x, y, th) = (s("x"), s("y"), q("theta"));
         let cases: Vec<(Expr, &str, &str, &str)> = vec![

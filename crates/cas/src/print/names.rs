@@ -103,8 +103,17 @@ pub(super) fn unicode(s: Symbol) -> String {
         out.clear();
         out.push(c);
     }
+    // A dot over the last of several Latin letters (`tḣ1`) reads as a dot over that letter
+    // alone: a multi-letter name takes primes after its digits instead, as the model language
+    // writes rates (`th1'`, `th1''`).
+    let primes = greek(letters).is_none() && letters.chars().count() > 1;
     match s.order() {
         _ if precomposed.is_some() => {}
+        k if primes => {
+            out.push_str(digits);
+            out.push_str(&"'".repeat(usize::from(k)));
+            return finish_subscript(out, sub);
+        }
         0 => {}
         // Combining dots above: one, two, three, four.
         1 => out.push('\u{307}'),
@@ -118,6 +127,11 @@ pub(super) fn unicode(s: Symbol) -> String {
         }
     }
     out.push_str(digits);
+    finish_subscript(out, sub)
+}
+
+/// Appends `_sub` (a Greek subscript as its letter: `m_α`).
+fn finish_subscript(mut out: String, sub: &str) -> String {
     if !sub.is_empty() {
         out.push('_');
         let (sl, sd, ss) = split(sub);
