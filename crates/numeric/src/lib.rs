@@ -1,4 +1,17 @@
-//! Numbers only: compiled evaluators, integrators, root finding and eigenproblems.
+//! Numbers only: the compiled evaluator [`Tape`], small dense solves ([`solve_in_place`]), the
+//! integrators ([`integrate()`]), root finding and eigenproblems.
 //!
-//! This crate knows the symbolic core (`cas`) and nothing of mechanics. It is empty until the
-//! simulation issue lands; see `docs/` for the plan.
+//! This crate knows the symbolic core (`cas`) and nothing of mechanics.
+#![warn(missing_docs)]
+
+pub mod eigen;
+pub mod integrate;
+mod linalg;
+pub mod roots;
+mod tape;
+
+pub use integrate::{
+    integrate, Failure, IntegratorOptions, Method, OdeSystem, Outcome, RhsError, Stats, StopReason,
+};
+pub use linalg::{cholesky_solve_in_place, solve_in_place, LinearError};
+pub use tape::{Tape, TapeError};

@@ -1,0 +1,231 @@
+//! Dormand–Prince 5(4): explicit Runge–Kutta with local extrapolation, FSAL, a PI step size
+//! controller, and Hairer's fourth-order continuous extension (Hairer, Nørsett & Wanner,
+//! *Solving ODEs I*, §II.5 and the code DOPRI5).
+
+use super::{Driver, Failure, StopReason};
+
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+const A21: f64 = 0.2;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339_200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+const D1: f64 = -12_715_105_075.0 / 11_282_082_432.0;
+const D3: f64 = 87_487_479_700.0 / 32_700_410_799.0;
+const D4: f64 = -10_690_763_975.0 / 1_880_347_072.0;
+const D5: f64 = 701_980_252_875.0 / 199_316_789_632.0;
+const D6: f64 = -1_453_857_185.0 / 822_651_844.0;
+const D7: f64 = 69_997_945.0 / 29_380_423.0;
+
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+    match steps(driver, observer) {
+        Ok(stop) => stop,
+        Err(failure) => StopReason::Failed(failure),
+    }
+}
+
+fn steps(
+    driver: &mut Driver<'_>,
+    observer: &mut dyn FnMut(f64, &[f64]),
+) -> Result<StopReason, Failure> {
+    let n = driver.y.len();
+    let mut k: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; n]);
+    let mut stage = vec![0.0; n];
+    let mut y1 = vec![0.0; n];
+    let mut error = vec![0.0; n];
+    let mut dense: [Vec<f64>; 5] = std::array::from_fn(|_| vec![0.0; n]);
+    let direction = driver.direction;
+    let y0 = driver.y.clone();
+    driver.rhs(driver.t, &y0, &mut k[0])?;
+    let mut h = match driver.options.step {
+        Some(h) if h.is_finite() && h > 0.0 => h,
+        _ => initial_step(driver, &k[0])?,
+    };
+    let mut previous_error: f64 = 1e-4;
+    let mut rejected_last = false;
+    loop {
+        let t = driver.t;
+        let span = (driver.t_end - t).abs();
+        if h >= span {
+            h = span;
+        }
+        let min_step = 16.0 * f64::EPSILON * t.abs().max(1e-300);
+        if h < min_step {
+            return Err(Failure::StepUnderflow { t, h });
+        }
+        let hs = h * direction;
+        // Stages 2…7; stage 7 is evaluated at the new point and reused as stage 1 (FSAL).
+        let stages: [&[(usize, f64)]; 6] = [
+            &[(0, A21)],
+            &[(0, A31), (1, A32)],
+            &[(0, A41), (1, A42), (2, A43)],
+            &[(0, A51), (1, A52), (2, A53), (3, A54)],
+            &[(0, A61), (1, A62), (2, A63), (3, A64), (4, A65)],
+            &[(0, A71), (2, A73), (3, A74), (4, A75), (5, A76)],
+        ];
+        let mut failed = None;
+        for (s, row) in stages.iter().enumerate() {
+            let out = if s == 5 { &mut y1 } else { &mut stage };
+            for i in 0..n {
+                let acc: f64 = row.iter().map(|&(j, a)| a * k[j][i]).sum();
+                out[i] = driver.y[i] + hs * acc;
+            }
+            let ts = t + C[s + 1] * hs;
+            let input = if s == 5 { &y1 } else { &stage };
+            if let Err(e) = driver.rhs(ts, input, &mut k[s + 1]) {
+                failed = Some(e);
+                break;
+            }
+        }
+        let err = match failed {
+            // A failed evaluation inside the step (NaN, a singular matrix met on the way) is
+            // treated as a rejection with a much smaller step; only at the step floor is it
+            // reported, with the time of the step.
+            Some(e) => {
+                if h <= 1e3 * min_step {
+                    return Err(match e {
+                        Failure::Rhs { error, .. } => Failure::Rhs { t, error },
+                        other => other,
+                    });
+                }
+                f64::INFINITY
+            }
+            None => {
+                for i in 0..n {
+                    error[i] = hs
+                        * (E1 * k[0][i]
+                            + E3 * k[2][i]
+                            + E4 * k[3][i]
+                            + E5 * k[4][i]
+                            + E6 * k[5][i]
+                            + E7 * k[6][i]);
+                }
+                driver.error_norm(&driver.y, &y1, &error)
+            }
+        };
+        if err <= 1.0 {
+            // PI controller with the exponents of Hairer's DOPRI5 (α = 0.2 − 0.75 β, β = 0.04).
+            let factor = if err == 0.0 {
+                10.0
+            } else {
+                (0.9 * err.powf(-0.17) * previous_error.powf(0.04)).clamp(0.2, 10.0)
+            };
+            let factor = if rejected_last {
+                factor.min(1.0)
+            } else {
+                factor
+            };
+            previous_error = err.max(1e-4);
+            rejected_last = false;
+            for i in 0..n {
+                let ydiff = y1[i] - driver.y[i];
+                let bspl = hs * k[0][i] - ydiff;
+                dense[0][i] = driver.y[i];
+                dense[1][i] = ydiff;
+                dense[2][i] = bspl;
+                dense[3][i] = ydiff - hs * k[6][i] - bspl;
+                dense[4][i] = hs
+                    * (D1 * k[0][i]
+                        + D3 * k[2][i]
+                        + D4 * k[3][i]
+                        + D5 * k[4][i]
+                        + D6 * k[5][i]
+                        + D7 * k[6][i]);
+            }
+            let t1 = if h == span { driver.t_end } else { t + hs };
+            let interpolate = |at: f64, out: &mut [f64]| {
+                let theta = (at - t) / hs;
+                let theta1 = 1.0 - theta;
+                for i in 0..out.len() {
+                    out[i] = dense[0][i]
+                        + theta
+                            * (dense[1][i]
+                                + theta1
+                                    * (dense[2][i] + theta * (dense[3][i] + theta1 * dense[4][i])));
+                }
+            };
+            if let Some(stop) = driver.accept(t1, &y1, &interpolate, observer) {
+                return Ok(stop);
+            }
+            if driver.project()? {
+                let y = driver.y.clone();
+                driver.rhs(driver.t, &y, &mut k[0])?;
+            } else {
+                let (first, rest) = k.split_at_mut(1);
+                first[0].copy_from_slice(&rest[5]);
+            }
+            h *= factor;
+        } else {
+            driver.stats.rejected += 1;
+            rejected_last = true;
+            let factor = if err.is_finite() {
+                (0.9 * err.powf(-0.2)).clamp(0.2, 1.0)
+            } else {
+                0.1
+            };
+            h *= factor;
+        }
+    }
+}
+
+/// Hairer's starting step: a first guess from `‖y‖/‖y'‖`, refined with one Euler step's
+/// estimate of the second derivative.
+fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
+    let n = driver.y.len();
+    let (rtol, atol) = (driver.options.rtol, driver.options.atol);
+    let scale: Vec<f64> = driver.y.iter().map(|y| atol + rtol * y.abs()).collect();
+    let rms = |v: &[f64]| -> f64 {
+        (v.iter()
+            .zip(&scale)
+            .map(|(x, s)| (x / s).powi(2))
+            .sum::<f64>()
+            / n.max(1) as f64)
+            .sqrt()
+    };
+    let d0 = rms(&driver.y);
+    let d1 = rms(f0);
+    let span = (driver.t_end - driver.t).abs();
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    }
+    .min(span);
+    let y1: Vec<f64> = driver
+        .y
+        .iter()
+        .zip(f0)
+        .map(|(y, f)| y + driver.direction * h0 * f)
+        .collect();
+    let mut f1 = vec![0.0; n];
+    driver.rhs(driver.t + driver.direction * h0, &y1, &mut f1)?;
+    let diff: Vec<f64> = f1.iter().zip(f0).map(|(a, b)| (a - b) / h0).collect();
+    let d2 = rms(&diff);
+    let h1 = if d1.max(d2) <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d1.max(d2)).powf(0.2)
+    };
+    Ok((100.0 * h0).min(h1).min(span).max(1e-12))
+}

@@ -1,0 +1,414 @@
+//! Integrators for `y' = F(t, y)`: [`Method::Dopri5`] (adaptive explicit Runge–Kutta 5(4)
+//! with a fourth-order dense output; the default) and [`Method::Gauss`] (three-stage
+//! Gauss–Legendre collocation, order 6, implicit and symplectic, with a fixed step: applied to
+//! Hamilton's equations its energy error stays bounded over long runs), and [`Method::Sdirk`]
+//! (L-stable implicit SDIRK of order 2, adaptive, for stiff systems).
+//!
+//! [`integrate`] drives either: it reports the state at the requested output times through an
+//! observer, calls [`OdeSystem::project`] after each accepted step (constraint projection),
+//! stops at the first sign change of an event function (located by bisection on the dense
+//! output), and ends with an [`Outcome`]: why it stopped ([`StopReason`], with the time of a
+//! failure: a non-finite value, a singular matrix, a step size underflow) and the work done
+//! ([`Stats`]). What was observed before a failure stays with the observer.
+
+mod dopri5;
+mod gauss;
+mod sdirk;
+
+use std::fmt;
+
+/// Why the right-hand side could not be evaluated at a state.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RhsError {
+    /// The mass matrix (or the constrained system's matrix) is singular at this state.
+    #[error("the mass matrix is singular (no pivot in column {column})")]
+    SingularMatrix {
+        /// The column without a pivot.
+        column: usize,
+    },
+    /// A value came out NaN or infinite.
+    #[error("a value is not finite (NaN or infinite)")]
+    NotFinite,
+    /// The projection onto the constraints did not converge.
+    #[error("the projection onto the constraints did not converge")]
+    ProjectionFailed,
+}
+
+/// A first-order system `y' = F(t, y)` with optional constraint projection and events.
+pub trait OdeSystem {
+    /// The length of `y`.
+    fn dimension(&self) -> usize;
+    /// Writes `F(t, y)` into `dy`.
+    ///
+    /// # Errors
+    /// When `F` cannot be evaluated at this state.
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError>;
+    /// Moves `y` back onto the constraint manifold after an accepted step; returns whether it
+    /// changed `y`. The default does nothing.
+    ///
+    /// # Errors
+    /// When the projection fails.
+    fn project(&mut self, _t: f64, _y: &mut [f64]) -> Result<bool, RhsError> {
+        Ok(false)
+    }
+    /// How many event functions there are (default: none).
+    fn event_count(&self) -> usize {
+        0
+    }
+    /// Writes the event functions' values `g_k(t, y)`; the run stops where one changes sign.
+    fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
+}
+
+/// An integration method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Method {
+    /// Dormand–Prince 5(4), adaptive, dense output (default).
+    Dopri5,
+    /// Gauss–Legendre, 3 stages (order 6), fixed step, symplectic.
+    Gauss,
+    /// L-stable SDIRK of order 2, adaptive, Newton with a finite-difference Jacobian: stiff
+    /// systems.
+    Sdirk,
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Method::Dopri5 => "dopri5",
+            Method::Gauss => "gauss",
+            Method::Sdirk => "sdirk",
+        })
+    }
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IntegratorOptions {
+    /// Relative tolerance (default: 1e-8).
+    pub rtol: f64,
+    /// Absolute tolerance (default: 1e-10).
+    pub atol: f64,
+    /// The step: fixed for Gauss–Legendre, initial for adaptive methods (default: chosen from
+    /// the tolerances, and for Gauss–Legendre 1/100 of the output step or of the span).
+    pub step: Option<f64>,
+    /// Time between outputs; `None` reports every accepted step (default: `None`).
+    pub output_step: Option<f64>,
+    /// The most steps before giving up (default: 10⁸).
+    pub max_steps: u64,
+}
+
+impl Default for IntegratorOptions {
+    fn default() -> Self {
+        IntegratorOptions {
+            rtol: 1e-8,
+            atol: 1e-10,
+            step: None,
+            output_step: None,
+            max_steps: 100_000_000,
+        }
+    }
+}
+
+/// Work done during a run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps (error too large, or an implicit solve that did not converge).
+    pub rejected: u64,
+    /// Evaluations of the right-hand side.
+    pub evaluations: u64,
+}
+
+/// Why a run failed.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Failure {
+    /// The right-hand side failed.
+    #[error("at t = {t}: {error}")]
+    Rhs {
+        /// When.
+        t: f64,
+        /// What.
+        error: RhsError,
+    },
+    /// The step size fell below what the time's precision resolves.
+    #[error("at t = {t}: the step size underflowed (h = {h:e}); the solution may blow up or the problem be stiff")]
+    StepUnderflow {
+        /// When.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// An implicit stage solve did not converge at the fixed step.
+    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:e}; use a smaller --step")]
+    NotConverged {
+        /// When.
+        t: f64,
+        /// The step size.
+        h: f64,
+    },
+    /// The step limit was reached.
+    #[error("at t = {t}: the limit of {steps} steps was reached")]
+    TooManySteps {
+        /// When.
+        t: f64,
+        /// The limit.
+        steps: u64,
+    },
+}
+
+/// Why a run stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum StopReason {
+    /// It reached the end time.
+    Finished,
+    /// Event function `index` changed sign at `t`.
+    Event {
+        /// Which event function.
+        index: usize,
+        /// When.
+        t: f64,
+    },
+    /// It failed; everything observed before is valid.
+    Failed(Failure),
+}
+
+/// The result of [`integrate`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Why it stopped.
+    pub stop: StopReason,
+    /// The time reached.
+    pub t: f64,
+    /// Work done.
+    pub stats: Stats,
+}
+
+/// Integrates `system` from `(t0, y0)` to `t_end` (which may be below `t0`), calling
+/// `observer(t, y)` at `t0`, at each output time (every `output_step`, or each accepted step)
+/// and at the final time.
+pub fn integrate(
+    system: &mut dyn OdeSystem,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    options: &IntegratorOptions,
+    observer: &mut dyn FnMut(f64, &[f64]),
+) -> Outcome {
+    let mut driver = Driver::new(system, t0, y0, t_end, options);
+    observer(t0, y0);
+    let stop = match method {
+        Method::Dopri5 => dopri5::run(&mut driver, observer),
+        Method::Gauss => gauss::run(&mut driver, observer),
+        Method::Sdirk => sdirk::run(&mut driver, observer),
+    };
+    Outcome {
+        stop,
+        t: driver.t,
+        stats: driver.stats,
+    }
+}
+
+/// State shared by the methods: time, state, outputs, events, counters.
+pub(crate) struct Driver<'s> {
+    pub(crate) system: &'s mut dyn OdeSystem,
+    pub(crate) t: f64,
+    pub(crate) y: Vec<f64>,
+    pub(crate) t_end: f64,
+    pub(crate) direction: f64,
+    pub(crate) options: IntegratorOptions,
+    pub(crate) stats: Stats,
+    next_output: Option<f64>,
+    output_index: u64,
+    t0: f64,
+    events_before: Vec<f64>,
+    events_after: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+impl<'s> Driver<'s> {
+    fn new(
+        system: &'s mut dyn OdeSystem,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        options: &IntegratorOptions,
+    ) -> Self {
+        let direction = if t_end >= t0 { 1.0 } else { -1.0 };
+        let events = system.event_count();
+        let mut events_before = vec![0.0; events];
+        if events > 0 {
+            system.events(t0, y0, &mut events_before);
+        }
+        let output_step = options
+            .output_step
+            .filter(|s| s.is_finite() && *s > 0.0)
+            .map(f64::abs);
+        Driver {
+            system,
+            t: t0,
+            y: y0.to_vec(),
+            t_end,
+            direction,
+            options: *options,
+            stats: Stats::default(),
+            next_output: output_step.map(|s| t0 + direction * s),
+            output_index: 1,
+            t0,
+            events_before,
+            events_after: vec![0.0; events],
+            scratch: vec![0.0; y0.len()],
+        }
+    }
+
+    pub(crate) fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Failure> {
+        self.stats.evaluations += 1;
+        self.system
+            .rhs(t, y, dy)
+            .map_err(|error| Failure::Rhs { t, error })?;
+        if dy.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(Failure::Rhs {
+                t,
+                error: RhsError::NotFinite,
+            })
+        }
+    }
+
+    /// After a step from `self.t` to `t1` with the new state `y1` and an interpolant over the
+    /// step: reports outputs, checks events, and advances. Returns `Some` when the run stops.
+    pub(crate) fn accept(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        interpolate: &dyn Fn(f64, &mut [f64]),
+        observer: &mut dyn FnMut(f64, &[f64]),
+    ) -> Option<StopReason> {
+        self.stats.steps += 1;
+        // Events: the first sign change in this step, located by bisection on the interpolant.
+        let mut stop_event: Option<(usize, f64)> = None;
+        if !self.events_before.is_empty() {
+            self.system.events(t1, y1, &mut self.events_after);
+            for k in 0..self.events_before.len() {
+                let (g0, g1) = (self.events_before[k], self.events_after[k]);
+                if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
+                    let (mut a, mut b) = (self.t, t1);
+                    let mut ga = g0;
+                    let mut values = vec![0.0; self.events_before.len()];
+                    for _ in 0..200 {
+                        let m = 0.5 * (a + b);
+                        if m == a || m == b {
+                            break;
+                        }
+                        interpolate(m, &mut self.scratch);
+                        self.system.events(m, &self.scratch, &mut values);
+                        if ga * values[k] <= 0.0 {
+                            b = m;
+                        } else {
+                            a = m;
+                            ga = values[k];
+                        }
+                    }
+                    let earlier = stop_event.is_none_or(|(_, t)| (b - t) * self.direction < 0.0);
+                    if earlier {
+                        stop_event = Some((k, b));
+                    }
+                }
+            }
+            std::mem::swap(&mut self.events_before, &mut self.events_after);
+        }
+        let horizon = stop_event.map_or(t1, |(_, t)| t);
+        // Outputs inside the step.
+        match self.options.output_step {
+            Some(step) if step.is_finite() && step > 0.0 => {
+                while let Some(to) = self.next_output {
+                    let inside = (to - horizon) * self.direction <= 0.0
+                        && (to - self.t_end) * self.direction < 0.0;
+                    if !inside {
+                        break;
+                    }
+                    interpolate(to, &mut self.scratch);
+                    observer(to, &self.scratch);
+                    self.output_index += 1;
+                    self.next_output =
+                        Some(self.t0 + self.direction * step * self.output_index as f64);
+                }
+            }
+            _ => {
+                if stop_event.is_none() && t1 != self.t_end {
+                    observer(t1, y1);
+                }
+            }
+        }
+        if let Some((index, t)) = stop_event {
+            interpolate(t, &mut self.scratch);
+            observer(t, &self.scratch);
+            self.t = t;
+            self.y.copy_from_slice(&self.scratch);
+            return Some(StopReason::Event { index, t });
+        }
+        self.t = t1;
+        self.y.copy_from_slice(y1);
+        if t1 == self.t_end {
+            observer(t1, y1);
+            return Some(StopReason::Finished);
+        }
+        if self.stats.steps >= self.options.max_steps {
+            return Some(StopReason::Failed(Failure::TooManySteps {
+                t: t1,
+                steps: self.options.max_steps,
+            }));
+        }
+        None
+    }
+
+    /// Projects the current state after a step; returns whether it changed.
+    pub(crate) fn project(&mut self) -> Result<bool, Failure> {
+        let t = self.t;
+        self.system
+            .project(t, &mut self.y)
+            .map_err(|error| Failure::Rhs { t, error })
+    }
+
+    /// The weighted RMS norm of an error estimate.
+    pub(crate) fn error_norm(&self, y0: &[f64], y1: &[f64], error: &[f64]) -> f64 {
+        let (rtol, atol) = (self.options.rtol, self.options.atol);
+        let n = y0.len().max(1) as f64;
+        let sum: f64 = y0
+            .iter()
+            .zip(y1)
+            .zip(error)
+            .map(|((a, b), e)| {
+                let scale = atol + rtol * a.abs().max(b.abs());
+                (e / scale).powi(2)
+            })
+            .sum();
+        (sum / n).sqrt()
+    }
+}
+
+/// One end of a step for [`hermite`]: time, state, derivative.
+pub(crate) type StepEnd<'a> = (f64, &'a [f64], &'a [f64]);
+
+/// Cubic Hermite interpolation between two step ends.
+pub(crate) fn hermite(start: StepEnd<'_>, end: StepEnd<'_>, t: f64, out: &mut [f64]) {
+    let ((t0, y0, f0), (t1, y1, f1)) = (start, end);
+    let h = t1 - t0;
+    let s = if h == 0.0 { 1.0 } else { (t - t0) / h };
+    let h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s);
+    let h10 = s * (1.0 - s) * (1.0 - s);
+    let h01 = s * s * (3.0 - 2.0 * s);
+    let h11 = s * s * (s - 1.0);
+    for (i, value) in out.iter_mut().enumerate() {
+        *value = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i];
+    }
+}
+
+#[cfg(test)]
+mod tests;

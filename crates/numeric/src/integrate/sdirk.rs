@@ -1,0 +1,204 @@
+//! A two-stage singly diagonally implicit Runge–Kutta method for stiff systems: Alexander's
+//! L-stable, stiffly accurate SDIRK of order 2 with `γ = 1 − 1/√2` (Hairer & Wanner, *Solving
+//! ODEs II*, §IV.6). The stage equations `Yᵢ = baseᵢ + hγ F(tᵢ, Yᵢ)` are solved by Newton's
+//! method with the iteration matrix `I − hγ J`, `J` by finite differences once per step. The
+//! error estimate compares with the embedded first-order solution `y + h K₁`; a Newton solve
+//! that does not converge rejects the step and retries with a quarter of it.
+
+use super::{hermite, Driver, Failure, StopReason};
+use crate::linalg::solve_in_place;
+
+const GAMMA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
+const NEWTON_ITERATIONS: usize = 10;
+
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+    match steps(driver, observer) {
+        Ok(stop) => stop,
+        Err(failure) => StopReason::Failed(failure),
+    }
+}
+
+struct Work {
+    n: usize,
+    jacobian: Vec<f64>,
+    matrix: Vec<f64>,
+    residual: Vec<f64>,
+    perturbed: Vec<f64>,
+    value: Vec<f64>,
+}
+
+fn steps(
+    driver: &mut Driver<'_>,
+    observer: &mut dyn FnMut(f64, &[f64]),
+) -> Result<StopReason, Failure> {
+    let n = driver.y.len();
+    let mut work = Work {
+        n,
+        jacobian: vec![0.0; n * n],
+        matrix: vec![0.0; n * n],
+        residual: vec![0.0; n],
+        perturbed: vec![0.0; n],
+        value: vec![0.0; n],
+    };
+    let mut f0 = vec![0.0; n];
+    let mut k1 = vec![0.0; n];
+    let mut k2 = vec![0.0; n];
+    let mut stage1 = vec![0.0; n];
+    let mut y1 = vec![0.0; n];
+    let mut base = vec![0.0; n];
+    let mut error = vec![0.0; n];
+    let y = driver.y.clone();
+    driver.rhs(driver.t, &y, &mut f0)?;
+    let span = (driver.t_end - driver.t).abs();
+    let mut h = match driver.options.step {
+        Some(h) if h.is_finite() && h > 0.0 => h,
+        _ => (span * 1e-4).max(1e-8).min(span),
+    };
+    let mut jacobian_fresh = false;
+    loop {
+        let t = driver.t;
+        let remaining = (driver.t_end - t).abs();
+        let last = h >= remaining;
+        if last {
+            h = remaining;
+        }
+        let min_step = 16.0 * f64::EPSILON * t.abs().max(1e-300);
+        if h < min_step {
+            return Err(Failure::StepUnderflow { t, h });
+        }
+        let hs = h * driver.direction;
+        if !jacobian_fresh {
+            let y = driver.y.clone();
+            jacobian(driver, &mut work, t, &y, &f0)?;
+            jacobian_fresh = true;
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let identity = if i == j { 1.0 } else { 0.0 };
+                work.matrix[i * n + j] = identity - hs * GAMMA * work.jacobian[i * n + j];
+            }
+        }
+        // Stage 1 from y, stage 2 from y + h(1 − γ) K₁; the predictor is y (then stage 1).
+        base.copy_from_slice(&driver.y);
+        stage1.copy_from_slice(&driver.y);
+        let solved = newton(
+            driver,
+            &mut work,
+            t + GAMMA * hs,
+            hs,
+            &base,
+            &mut stage1,
+            &mut k1,
+        )?;
+        let solved = solved && {
+            for i in 0..n {
+                base[i] = driver.y[i] + hs * (1.0 - GAMMA) * k1[i];
+            }
+            y1.copy_from_slice(&stage1);
+            newton(driver, &mut work, t + hs, hs, &base, &mut y1, &mut k2)?
+        };
+        if !solved {
+            driver.stats.rejected += 1;
+            h *= 0.25;
+            jacobian_fresh = false;
+            continue;
+        }
+        for i in 0..n {
+            error[i] = hs * GAMMA * (k2[i] - k1[i]);
+        }
+        let err = driver.error_norm(&driver.y, &y1, &error);
+        let factor = if err == 0.0 {
+            5.0
+        } else {
+            (0.9 * err.powf(-0.5)).clamp(0.2, 5.0)
+        };
+        if err > 1.0 || !err.is_finite() {
+            driver.stats.rejected += 1;
+            h *= if err.is_finite() {
+                factor.min(0.9)
+            } else {
+                0.25
+            };
+            continue;
+        }
+        let t1 = if last { driver.t_end } else { t + hs };
+        let y0 = driver.y.clone();
+        // Stiffly accurate: K₂ = F(t + h, y₁), the derivative at the new point.
+        let interpolate =
+            |at: f64, out: &mut [f64]| hermite((t, &y0, &f0), (t1, &y1, &k2), at, out);
+        if let Some(stop) = driver.accept(t1, &y1, &interpolate, observer) {
+            return Ok(stop);
+        }
+        if driver.project()? {
+            let y = driver.y.clone();
+            driver.rhs(driver.t, &y, &mut f0)?;
+        } else {
+            f0.copy_from_slice(&k2);
+        }
+        jacobian_fresh = false;
+        h *= factor;
+    }
+}
+
+/// `J = ∂F/∂y` at `(t, y)` by forward differences.
+fn jacobian(
+    driver: &mut Driver<'_>,
+    work: &mut Work,
+    t: f64,
+    y: &[f64],
+    f0: &[f64],
+) -> Result<(), Failure> {
+    let n = work.n;
+    for j in 0..n {
+        work.perturbed.copy_from_slice(y);
+        let delta = f64::EPSILON.sqrt() * y[j].abs().max(1e-5);
+        work.perturbed[j] += delta;
+        let perturbed = work.perturbed.clone();
+        driver.rhs(t, &perturbed, &mut work.value)?;
+        for (i, (value, base)) in work.value.iter().zip(f0).enumerate() {
+            work.jacobian[i * n + j] = (value - base) / delta;
+        }
+    }
+    Ok(())
+}
+
+/// Solves `Y = base + hγ F(t, Y)` from the guess in `stage`; leaves `F(t, Y)` in `derivative`.
+/// Returns whether Newton converged.
+fn newton(
+    driver: &mut Driver<'_>,
+    work: &mut Work,
+    t: f64,
+    hs: f64,
+    base: &[f64],
+    stage: &mut [f64],
+    derivative: &mut [f64],
+) -> Result<bool, Failure> {
+    let n = work.n;
+    let (rtol, atol) = (driver.options.rtol, driver.options.atol);
+    let mut matrix = vec![0.0; n * n];
+    for _ in 0..NEWTON_ITERATIONS {
+        if driver.rhs(t, stage, derivative).is_err() {
+            return Ok(false);
+        }
+        for i in 0..n {
+            work.residual[i] = -(stage[i] - base[i] - hs * GAMMA * derivative[i]);
+        }
+        matrix.copy_from_slice(&work.matrix);
+        if solve_in_place(n, &mut matrix, &mut work.residual).is_err() {
+            return Ok(false);
+        }
+        let mut size: f64 = 0.0;
+        for (x, dx) in stage.iter_mut().zip(&work.residual) {
+            *x += dx;
+            let scale = atol + rtol * x.abs();
+            size = size.max((dx / scale).abs());
+        }
+        if !size.is_finite() {
+            return Ok(false);
+        }
+        if size < 1e-2 {
+            return Ok(driver.rhs(t, stage, derivative).is_ok());
+        }
+    }
+    Ok(false)
+}

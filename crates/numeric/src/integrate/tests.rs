@@ -1,0 +1,198 @@
+//! Integrator tests against exact solutions.
+
+use super::*;
+
+/// `x'' = −x`: y = (x, v), exact x = cos t, v = −sin t; an event at x = 0.
+struct Oscillator {
+    events: bool,
+}
+
+impl OdeSystem for Oscillator {
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = y[1];
+        dy[1] = -y[0];
+        Ok(())
+    }
+    fn event_count(&self) -> usize {
+        usize::from(self.events)
+    }
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        g[0] = y[0];
+    }
+}
+
+fn run(
+    method: Method,
+    options: IntegratorOptions,
+    events: bool,
+) -> (Outcome, Vec<(f64, Vec<f64>)>) {
+    let mut out = Vec::new();
+    let outcome = integrate(
+        &mut Oscillator { events },
+        method,
+        0.0,
+        &[1.0, 0.0],
+        10.0,
+        &options,
+        &mut |t, y| out.push((t, y.to_vec())),
+    );
+    (outcome, out)
+}
+
+#[test]
+fn dopri5_meets_its_tolerance_at_every_dense_output() {
+    let options = IntegratorOptions {
+        rtol: 1e-10,
+        atol: 1e-12,
+        output_step: Some(0.1),
+        ..IntegratorOptions::default()
+    };
+    let (outcome, out) = run(Method::Dopri5, options, false);
+    assert_eq!(outcome.stop, StopReason::Finished);
+    assert_eq!(out.len(), 101);
+    for (t, y) in &out {
+        assert!((y[0] - t.cos()).abs() < 1e-8, "t = {t}: {}", y[0] - t.cos());
+        assert!((y[1] + t.sin()).abs() < 1e-8);
+    }
+    assert_eq!(out.last().map(|p| p.0), Some(10.0));
+    assert!(outcome.stats.steps > 10 && outcome.stats.evaluations > 6 * outcome.stats.steps);
+}
+
+#[test]
+fn dopri5_error_shrinks_with_the_tolerance() {
+    let error = |rtol: f64| {
+        let options = IntegratorOptions {
+            rtol,
+            atol: rtol,
+            ..IntegratorOptions::default()
+        };
+        let (_, out) = run(Method::Dopri5, options, false);
+        let (t, y) = out.last().cloned().unwrap();
+        (y[0] - t.cos()).abs()
+    };
+    let (coarse, fine) = (error(1e-6), error(1e-10));
+    assert!(fine < coarse / 100.0, "{coarse} vs {fine}");
+}
+
+#[test]
+fn events_stop_at_the_zero_crossing() {
+    let (outcome, out) = run(Method::Dopri5, IntegratorOptions::default(), true);
+    let StopReason::Event { index: 0, t } = outcome.stop else {
+        panic!("no event: {:?}", outcome.stop);
+    };
+    assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-7, "{t}");
+    assert_eq!(out.last().map(|p| p.0), Some(t));
+}
+
+#[test]
+fn gauss_is_order_six_and_conserves_the_quadratic_energy() {
+    let options = IntegratorOptions {
+        step: Some(0.1),
+        ..IntegratorOptions::default()
+    };
+    let (outcome, out) = run(Method::Gauss, options, false);
+    assert_eq!(outcome.stop, StopReason::Finished);
+    assert_eq!(outcome.stats.steps, 100);
+    let (t, y) = out.last().cloned().unwrap();
+    assert_eq!(t, 10.0);
+    assert!((y[0] - t.cos()).abs() < 1e-8, "{}", y[0] - t.cos());
+    for (_, y) in &out {
+        assert!((y[0] * y[0] + y[1] * y[1] - 1.0).abs() < 1e-13);
+    }
+}
+
+/// `y' = 1/(1 − t)` blows up at t = 1: the run must stop there with a failure, keeping
+/// what came before.
+struct BlowUp;
+
+impl OdeSystem for BlowUp {
+    fn dimension(&self) -> usize {
+        1
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = y[0] * y[0];
+        Ok(())
+    }
+}
+
+#[test]
+fn a_blow_up_fails_near_its_time_and_keeps_the_data() {
+    let mut out = Vec::new();
+    let outcome = integrate(
+        &mut BlowUp,
+        Method::Dopri5,
+        0.0,
+        &[1.0],
+        2.0,
+        &IntegratorOptions::default(),
+        &mut |t, y| out.push((t, y[0])),
+    );
+    let StopReason::Failed(failure) = outcome.stop else {
+        panic!("no failure: {:?}", outcome.stop);
+    };
+    assert!((outcome.t - 1.0).abs() < 1e-3, "{failure} at {}", outcome.t);
+    assert!(out.len() > 10);
+    assert!(
+        out.iter().all(|(t, _)| *t < 1.0 + 1e-6),
+        "{failure}: {:?}",
+        &out[out.len() - 3..]
+    );
+    assert!(out
+        .iter()
+        .filter(|(t, _)| *t < 0.99)
+        .all(|(t, y)| (y - 1.0 / (1.0 - t)).abs() < 1e-5 * y));
+}
+
+/// `y₁' = −1000 (y₁ − cos t)`, `y₂' = y₁`: a stiff relaxation onto `cos t`.
+struct Stiff;
+
+impl OdeSystem for Stiff {
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = -1000.0 * (y[0] - t.cos());
+        dy[1] = y[0];
+        Ok(())
+    }
+}
+
+#[test]
+fn sdirk_takes_large_steps_on_a_stiff_problem_and_stays_accurate() {
+    let run = |method, rtol: f64| {
+        let options = IntegratorOptions {
+            rtol,
+            atol: rtol * 1e-2,
+            ..IntegratorOptions::default()
+        };
+        let mut last = Vec::new();
+        let outcome = integrate(
+            &mut Stiff,
+            method,
+            0.0,
+            &[0.0, 0.0],
+            10.0,
+            &options,
+            &mut |_, y| {
+                last = y.to_vec();
+            },
+        );
+        assert_eq!(outcome.stop, StopReason::Finished);
+        (outcome.stats, last)
+    };
+    let (_, reference) = run(Method::Dopri5, 1e-10);
+    let (implicit, y) = run(Method::Sdirk, 1e-4);
+    // The explicit method is held to |hλ| ≲ 3.3 by stability whatever the tolerance.
+    let (explicit, _) = run(Method::Dopri5, 1e-4);
+    assert!((y[0] - reference[0]).abs() < 1e-3, "{y:?} vs {reference:?}");
+    assert!((y[1] - reference[1]).abs() < 1e-3, "{y:?} vs {reference:?}");
+    assert!(
+        implicit.steps * 4 < explicit.steps,
+        "sdirk {} steps, dopri5 {}",
+        implicit.steps,
+        explicit.steps
+    );
+}

@@ -1,0 +1,290 @@
+//! Root finding for systems `F(x) = 0` over a box: a dense scan with bisection in one
+//! dimension, Newton from a grid of starts in several. Neither *guarantees* completeness (the
+//! caller says so); the scan finds every root where `F` changes sign between grid points or
+//! touches zero at a local minimum of `|F|` on the grid.
+
+/// A residual or Jacobian that may fail to evaluate at a point (outside its domain).
+pub type Residual<'a> = dyn Fn(&[f64]) -> Option<Vec<f64>> + 'a;
+
+/// Options of the search.
+#[derive(Clone, Debug)]
+pub struct Search {
+    /// Lower and upper bound per unknown.
+    pub bounds: Vec<(f64, f64)>,
+    /// Whether unknown `i` is an angle (values identified modulo 2π).
+    pub periodic: Vec<bool>,
+    /// Grid points in the one-dimensional scan.
+    pub scan_points: usize,
+    /// Upper bound on the number of Newton starts in several dimensions.
+    pub max_starts: usize,
+    /// Residual tolerance for accepting a root.
+    pub tolerance: f64,
+}
+
+impl Search {
+    /// Defaults for a box.
+    #[must_use]
+    pub fn new(bounds: Vec<(f64, f64)>, periodic: Vec<bool>) -> Search {
+        Search {
+            bounds,
+            periodic,
+            scan_points: 4000,
+            max_starts: 600,
+            tolerance: 1e-9,
+        }
+    }
+}
+
+/// Wraps an angle into (−π, π].
+#[must_use]
+pub fn wrap_angle(x: f64) -> f64 {
+    let two_pi = std::f64::consts::TAU;
+    let mut y = x.rem_euclid(two_pi);
+    if y > std::f64::consts::PI {
+        y -= two_pi;
+    }
+    y
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Solves `J d = −F` by Gaussian elimination with partial pivoting; `None` when singular.
+fn newton_step(j: &[f64], f: &[f64]) -> Option<Vec<f64>> {
+    let n = f.len();
+    let mut a: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            let mut row: Vec<f64> = j[i * n..(i + 1) * n].to_vec();
+            row.push(-f[i]);
+            row
+        })
+        .collect();
+    for col in 0..n {
+        let pivot = (col..n).max_by(|x, y| a[*x][col].abs().total_cmp(&a[*y][col].abs()))?;
+        if a[pivot][col].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(col, pivot);
+        let (upper, lower) = a.split_at_mut(col + 1);
+        let pivot_row = &upper[col];
+        for row in lower.iter_mut() {
+            let factor = row[col] / pivot_row[col];
+            for (r, p) in row.iter_mut().zip(pivot_row).skip(col) {
+                *r -= factor * p;
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let s: f64 = (i + 1..n).map(|k| a[i][k] * x[k]).sum();
+        x[i] = (a[i][n] - s) / a[i][i];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Newton's method (damped by halving when the residual grows); the root, if it converges.
+pub fn newton(
+    f: &Residual<'_>,
+    jacobian: &Residual<'_>,
+    start: &[f64],
+    tolerance: f64,
+) -> Option<Vec<f64>> {
+    let mut x = start.to_vec();
+    let mut fx = f(&x)?;
+    for _ in 0..60 {
+        let r = norm(&fx);
+        if r < tolerance {
+            return Some(x);
+        }
+        let j = jacobian(&x)?;
+        let d = newton_step(&j, &fx)?;
+        let mut step = 1.0;
+        loop {
+            let trial: Vec<f64> = x.iter().zip(&d).map(|(a, b)| a + step * b).collect();
+            if let Some(ft) = f(&trial) {
+                if norm(&ft) < r || step < 1e-3 {
+                    x = trial;
+                    fx = ft;
+                    break;
+                }
+            }
+            step *= 0.5;
+            if step < 1e-4 {
+                return None;
+            }
+        }
+    }
+    (norm(&fx) < tolerance).then_some(x)
+}
+
+/// Whether two points are the same root (angles modulo 2π).
+fn same(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
+    a.iter().zip(b).zip(periodic).all(|((x, y), p)| {
+        let d = if *p { wrap_angle(x - y) } else { x - y };
+        d.abs() < 1e-6 * (1.0 + x.abs().max(y.abs()))
+    })
+}
+
+/// Adds a root (angles wrapped) when it is inside the box and new.
+fn push_root(roots: &mut Vec<Vec<f64>>, mut x: Vec<f64>, search: &Search) {
+    for (i, v) in x.iter_mut().enumerate() {
+        if search.periodic[i] {
+            *v = wrap_angle(*v);
+        } else {
+            let (lo, hi) = search.bounds[i];
+            let slack = 1e-9 * (1.0 + lo.abs().max(hi.abs()));
+            if *v < lo - slack || *v > hi + slack {
+                return;
+            }
+        }
+    }
+    if !roots.iter().any(|r| same(r, &x, &search.periodic)) {
+        roots.push(x);
+    }
+}
+
+/// All roots found in the box (see the module doc for what "all" means here).
+pub fn find_roots(f: &Residual<'_>, jacobian: &Residual<'_>, search: &Search) -> Vec<Vec<f64>> {
+    let n = search.bounds.len();
+    let mut roots = Vec::new();
+    if n == 0 {
+        return roots;
+    }
+    if n == 1 {
+        let (mut lo, hi) = search.bounds[0];
+        let steps = search.scan_points.max(8);
+        let h = (hi - lo) / steps as f64;
+        if search.periodic[0] {
+            // A full turn, shifted by an irrational fraction of a step so that symmetric
+            // roots (0, ±π) do not sit on a sample or on the seam.
+            let shift = std::f64::consts::FRAC_1_PI * h;
+            lo += shift;
+        }
+        let value = |x: f64| f(&[x]).and_then(|v| v.first().copied());
+        let samples: Vec<(f64, Option<f64>)> = (0..=steps)
+            .map(|i| lo + h * i as f64)
+            .map(|x| (x, value(x)))
+            .collect();
+        for w in samples.windows(3) {
+            let [(x0, f0), (x1, f1), (_, f2)] = [w[0], w[1], w[2]];
+            let (Some(f0), Some(f1), Some(f2)) = (f0, f1, f2) else {
+                continue;
+            };
+            // A sign change on [x0, x1] (each interval is the first of one window, plus the
+            // last interval below): bisect, then polish with Newton.
+            if f0 == 0.0 {
+                push_root(&mut roots, vec![x0], search);
+            }
+            if f0 * f1 < 0.0 {
+                if let Some(r) = bisect(&value, x0, x1, f0) {
+                    let polished = newton(f, jacobian, &[r], search.tolerance).unwrap_or(vec![r]);
+                    push_root(&mut roots, polished, search);
+                }
+            }
+            // A local minimum of |F| without a sign change: a double root is possible.
+            if f1.abs() <= f0.abs() && f1.abs() <= f2.abs() && f0 * f2 > 0.0 && f0 * f1 > 0.0 {
+                if let Some(r) = newton(f, jacobian, &[x1], search.tolerance) {
+                    if (r[0] - x1).abs() <= 2.0 * h {
+                        push_root(&mut roots, r, search);
+                    }
+                }
+            }
+        }
+        if let [.., (xa, Some(fa)), (xb, Some(fb))] = samples[..] {
+            if fb == 0.0 {
+                push_root(&mut roots, vec![xb], search);
+            }
+            if fa * fb < 0.0 {
+                if let Some(r) = bisect(&value, xa, xb, fa) {
+                    push_root(&mut roots, vec![r], search);
+                }
+            }
+        }
+    } else {
+        let per_axis = ((search.max_starts as f64).powf(1.0 / n as f64).floor() as usize).max(2);
+        let total = per_axis.pow(n as u32);
+        for index in 0..total {
+            let mut rest = index;
+            let start: Vec<f64> = (0..n)
+                .map(|i| {
+                    let k = rest % per_axis;
+                    rest /= per_axis;
+                    let (lo, hi) = search.bounds[i];
+                    lo + (hi - lo) * (k as f64 + 0.5) / per_axis as f64
+                })
+                .collect();
+            if let Some(r) = newton(f, jacobian, &start, search.tolerance) {
+                push_root(&mut roots, r, search);
+            }
+        }
+    }
+    roots.sort_by(|a, b| {
+        a.iter()
+            .zip(b)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    roots
+}
+
+/// Bisection of a sign change of `value` on `[a, b]` (`fa = value(a)`).
+fn bisect(value: &dyn Fn(f64) -> Option<f64>, mut a: f64, mut b: f64, mut fa: f64) -> Option<f64> {
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        let fm = value(m)?;
+        if fm == 0.0 {
+            return Some(m);
+        }
+        if fa * fm < 0.0 {
+            b = m;
+        } else {
+            a = m;
+            fa = fm;
+        }
+    }
+    Some(0.5 * (a + b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_every_root_of_a_trigonometric_equation_in_one_angle() {
+        // sin θ (cos θ − 0.3) = 0: θ = 0, π, ±acos 0.3.
+        let f = |x: &[f64]| Some(vec![x[0].sin() * (x[0].cos() - 0.3)]);
+        let j = |x: &[f64]| Some(vec![x[0].cos() * (x[0].cos() - 0.3) - x[0].sin().powi(2)]);
+        let search = Search::new(
+            vec![(-std::f64::consts::PI, std::f64::consts::PI)],
+            vec![true],
+        );
+        let roots = find_roots(&f, &j, &search);
+        assert_eq!(roots.len(), 4, "{roots:?}");
+        assert!(roots.iter().any(|r| (r[0] - 0.3_f64.acos()).abs() < 1e-9));
+    }
+
+    #[test]
+    fn finds_a_double_root() {
+        let f = |x: &[f64]| Some(vec![(x[0] - 0.123_456).powi(2)]);
+        let j = |x: &[f64]| Some(vec![2.0 * (x[0] - 0.123_456)]);
+        let search = Search::new(vec![(-1.0, 1.0)], vec![false]);
+        let roots = find_roots(&f, &j, &search);
+        assert_eq!(roots.len(), 1);
+        assert!((roots[0][0] - 0.123_456).abs() < 1e-4);
+    }
+
+    #[test]
+    fn newton_grid_in_two_dimensions() {
+        // x² + y² = 1, y = x: two roots.
+        let f = |v: &[f64]| Some(vec![v[0] * v[0] + v[1] * v[1] - 1.0, v[1] - v[0]]);
+        let j = |v: &[f64]| Some(vec![2.0 * v[0], 2.0 * v[1], -1.0, 1.0]);
+        let search = Search::new(vec![(-2.0, 2.0), (-2.0, 2.0)], vec![false, false]);
+        let roots = find_roots(&f, &j, &search);
+        assert_eq!(roots.len(), 2, "{roots:?}");
+    }
+}

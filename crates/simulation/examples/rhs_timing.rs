@@ -1,0 +1,42 @@
+//! Times one right-hand side evaluation (tape + `M q̈ = f` solve) of a model at its initial
+//! state, for `bench/simulate/run.sh`: `cargo run --release -p lagrange-simulation --example
+//! rhs_timing -- MODEL [CALLS]` prints `rhs_ns=… instructions=…`.
+
+use std::time::Instant;
+
+use simulation::{Simulation, SimulationOptions};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let path = args.next().ok_or("usage: rhs_timing MODEL [CALLS]")?;
+    let calls: u32 = args.next().map_or(Ok(1_000_000), |s| s.parse())?;
+    let source = std::fs::read_to_string(&path)?;
+    let model = model::load(&source).map_err(|d| format!("{} errors in the model", d.0.len()))?;
+    let options = SimulationOptions {
+        t_end: Some(10.0),
+        ..SimulationOptions::default()
+    };
+    let mut simulation = Simulation::prepare(&model, &options)?;
+    let state = simulation.initial_state().to_vec();
+    let mut derivative = vec![0.0; state.len()];
+    let best = simulation.with_rhs(|system| -> Result<f64, numeric::RhsError> {
+        let mut best = f64::INFINITY;
+        for _ in 0..5 {
+            let started = Instant::now();
+            for k in 0..calls {
+                // The time varies so the work cannot be hoisted out of the loop.
+                let t = f64::from(k) * 1e-9;
+                system.rhs(t, std::hint::black_box(&state), &mut derivative)?;
+                std::hint::black_box(&derivative);
+            }
+            best = best.min(started.elapsed().as_secs_f64() / f64::from(calls));
+        }
+        Ok(best)
+    })?;
+    println!(
+        "rhs_ns={:.1} instructions={}",
+        best * 1e9,
+        simulation.rhs_instructions()
+    );
+    Ok(())
+}

@@ -1,0 +1,251 @@
+//! The equations of motion compiled for numbers: which expressions go on which tape, and the
+//! input layout shared by all tapes, `[q₁…qₙ, q̇₁…q̇ₙ, t, parameters…]`.
+//!
+//! Four tapes, each evaluated only where it is needed:
+//! * dynamics — `M` (row-major), `f`, `A`, `b`: every right-hand side evaluation;
+//! * monitor — energy, `Φ` of the holonomic rows, `c` of every row: at outputs and projections;
+//! * canonical — `M`, `p₀ = ∂L/∂q̇|_{q̇=0}` and `∂L/∂q + Q`: only for the symplectic method;
+//! * events — the `--stop-when` expressions.
+
+use cas::{Expr, Symbol};
+use mechanics::{ConstraintForm, Equations, System};
+use numeric::{Tape, TapeError};
+
+/// A tape with its own buffers: evaluating allocates nothing.
+#[derive(Clone, Debug)]
+pub(crate) struct Evaluator {
+    tape: Tape,
+    registers: Vec<f64>,
+    outputs: Vec<f64>,
+}
+
+impl Evaluator {
+    pub(crate) fn new(outputs: &[Expr], inputs: &[Symbol]) -> Result<Evaluator, TapeError> {
+        let tape = Tape::compile(outputs, inputs)?;
+        Ok(Evaluator {
+            registers: tape.registers(),
+            outputs: vec![0.0; tape.output_count()],
+            tape,
+        })
+    }
+
+    pub(crate) fn eval(&mut self, inputs: &[f64]) -> &[f64] {
+        self.tape
+            .eval(inputs, &mut self.registers, &mut self.outputs);
+        &self.outputs
+    }
+
+    pub(crate) fn instruction_count(&self) -> usize {
+        self.tape.instruction_count()
+    }
+}
+
+/// The compiled equations of one model. Invariant: every tape takes the input layout
+/// `[q (n), q̇ (n), t, parameters]`; `holonomic` lists the constraint rows (of `m`) that have
+/// a position-level `Φ`, in the order of the monitor's `Φ` outputs.
+#[derive(Clone, Debug)]
+pub(crate) struct Compiled {
+    pub(crate) n: usize,
+    pub(crate) m: usize,
+    pub(crate) holonomic: Vec<usize>,
+    pub(crate) dynamics: Evaluator,
+    pub(crate) monitor: Evaluator,
+    pub(crate) canonical: Option<(Evaluator, Evaluator)>,
+    pub(crate) events: Option<Evaluator>,
+    /// The input buffer, with the parameters' values in place.
+    pub(crate) inputs: Vec<f64>,
+    /// Whether the drift of every constraint row is known at position or velocity level.
+    pub(crate) drift_known: bool,
+}
+
+impl Compiled {
+    /// Compiles the equations. `parameters` are the values of every symbol that is not a
+    /// coordinate, a rate or time; `events` are expressions of the same symbols.
+    pub(crate) fn new(
+        system: &System,
+        equations: &Equations,
+        parameters: &[(String, f64)],
+        events: &[Expr],
+        canonical: bool,
+    ) -> Result<Compiled, TapeError> {
+        let names = equations.coordinates();
+        let n = names.len();
+        let m = equations.constraint_names().len();
+        let mut inputs: Vec<Symbol> = Vec::with_capacity(2 * n + 1 + parameters.len());
+        let mut values = vec![0.0; 2 * n + 1];
+        inputs.extend(names.iter().filter_map(|q| Expr::coordinate(q).as_symbol()));
+        inputs.extend(names.iter().filter_map(|q| Expr::rate(q, 1).as_symbol()));
+        inputs.extend(Expr::time().as_symbol());
+        for (name, value) in parameters {
+            if let Some(s) = Expr::symbol(name).as_symbol() {
+                inputs.push(s);
+                values.push(*value);
+            }
+        }
+
+        // The parameters are numbers for the whole run, so they are folded in before
+        // compiling: in normal form the terms that differ only in parameters (Σ m_k l_i l_j
+        // cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about
+        // n-fold. Values enter as floats, never as exact integers: the normal form expands
+        // trigonometry of integer multiples, and `cos(ω t)` with ω = 200 would become a
+        // degree-200 polynomial in cos t, numerically useless.
+        let constants: Vec<(Expr, Expr)> = parameters
+            .iter()
+            .map(|(name, value)| (Expr::symbol(name), Expr::float(*value)))
+            .collect();
+        let fold = |e: Expr| e.subs(&constants).normal();
+        let folded = |es: &[Expr]| es.iter().map(|e| fold(*e)).collect::<Vec<_>>();
+
+        let mut dynamic_outputs: Vec<Expr> = folded(&equations.mass_matrix().concat());
+        dynamic_outputs.extend(folded(equations.forcing()));
+        dynamic_outputs.extend(folded(&equations.constraint_matrix().concat()));
+        dynamic_outputs.extend(folded(equations.constraint_rhs()));
+        let dynamics = Evaluator::new(&dynamic_outputs, &inputs)?;
+
+        let energy = equations
+            .first_integrals()
+            .iter()
+            .find(|f| f.coordinate.is_none())
+            .map_or_else(
+                || (equations.kinetic_energy() + equations.potential_energy()).normal(),
+                |f| f.value,
+            );
+        let levels = constraint_levels(system, equations);
+        let drift_known = levels.len() == m;
+        let (holonomic, positions, velocities) = if drift_known {
+            let holonomic: Vec<usize> = levels
+                .iter()
+                .enumerate()
+                .filter(|(_, (phi, _))| phi.is_some())
+                .map(|(k, _)| k)
+                .collect();
+            let positions: Vec<Expr> = levels.iter().filter_map(|(phi, _)| *phi).collect();
+            let velocities: Vec<Expr> = levels.iter().map(|(_, c)| *c).collect();
+            (holonomic, positions, velocities)
+        } else {
+            (Vec::new(), Vec::new(), Vec::new())
+        };
+        let mut monitor_outputs = vec![fold(energy)];
+        monitor_outputs.extend(folded(&positions));
+        monitor_outputs.extend(folded(&velocities));
+        let monitor = Evaluator::new(&monitor_outputs, &inputs)?;
+
+        let canonical = if canonical {
+            let lagrangian = equations.lagrangian();
+            let q: Vec<Option<Symbol>> = names
+                .iter()
+                .map(|x| Expr::coordinate(x).as_symbol())
+                .collect();
+            let qd: Vec<Option<Symbol>> =
+                names.iter().map(|x| Expr::rate(x, 1).as_symbol()).collect();
+            let at_rest: Vec<(Expr, Expr)> = names
+                .iter()
+                .map(|x| (Expr::rate(x, 1), Expr::zero()))
+                .collect();
+            let partial = |e: Expr, s: Option<Symbol>| s.map_or_else(Expr::zero, |s| e.diff(s));
+            let mut mass_momentum: Vec<Expr> = equations.mass_matrix().concat();
+            mass_momentum.extend(
+                qd.iter()
+                    .map(|s| partial(lagrangian, *s).subs(&at_rest).normal()),
+            );
+            let forces: Vec<Expr> = q
+                .iter()
+                .zip(equations.generalized_forces())
+                .map(|(s, force)| (partial(lagrangian, *s) + *force).normal())
+                .collect();
+            Some((
+                Evaluator::new(&folded(&mass_momentum), &inputs)?,
+                Evaluator::new(&folded(&forces), &inputs)?,
+            ))
+        } else {
+            None
+        };
+        let events = if events.is_empty() {
+            None
+        } else {
+            Some(Evaluator::new(&folded(events), &inputs)?)
+        };
+        Ok(Compiled {
+            n,
+            m,
+            holonomic,
+            dynamics,
+            monitor,
+            canonical,
+            events,
+            inputs: values,
+            drift_known,
+        })
+    }
+
+    /// Puts `(q, q̇, t)` into the input buffer.
+    pub(crate) fn set_state(&mut self, q: &[f64], qd: &[f64], t: f64) {
+        let n = self.n;
+        self.inputs[..n].copy_from_slice(q);
+        self.inputs[n..2 * n].copy_from_slice(qd);
+        self.inputs[2 * n] = t;
+    }
+
+    /// Energy and constraint drift (the largest `|Φ|` or `|c|`; 0 without constraints, NaN
+    /// when the constraint rows could not be matched) at the state in the input buffer.
+    pub(crate) fn energy_and_drift(&mut self) -> (f64, f64) {
+        let out = self.monitor.eval(&self.inputs);
+        let drift = if self.drift_known {
+            out[1..].iter().fold(0.0f64, |d, x| d.max(x.abs()))
+        } else {
+            f64::NAN
+        };
+        (out[0], drift)
+    }
+}
+
+/// The constraints kept with multipliers, at position level (`Φ`, for holonomic rows) and at
+/// velocity level (`c`), rebuilt from the system the way `mechanics::derive` keeps them: in
+/// declaration order, eliminated coordinates substituted, rows that vanish dropped.
+fn constraint_levels(system: &System, equations: &Equations) -> Vec<(Option<Expr>, Expr)> {
+    let mut pairs: Vec<Vec<(Expr, Expr)>> = Vec::new();
+    for e in equations.eliminated() {
+        let mut value = e.value;
+        let mut level = Vec::new();
+        for order in 0..3u8 {
+            let target = if order == 0 {
+                Expr::coordinate(&e.coordinate)
+            } else {
+                Expr::rate(&e.coordinate, order)
+            };
+            level.push((target, value));
+            value = value.dt();
+        }
+        pairs.push(level);
+    }
+    let substitute = |mut x: Expr| {
+        for level in &pairs {
+            x = x.subs(level);
+        }
+        x.normal()
+    };
+    let mut rows = Vec::new();
+    for constraint in system.constraints() {
+        for form in &constraint.equations {
+            match form {
+                ConstraintForm::Holonomic(f) => {
+                    let phi = substitute(*f);
+                    let c = phi.dt().normal();
+                    if !c.is_zero() {
+                        rows.push((Some(phi), c));
+                    }
+                }
+                ConstraintForm::Velocity(c) => {
+                    let c = substitute(*c);
+                    if !c.is_zero() {
+                        rows.push((None, c));
+                    }
+                }
+                // A form this code does not know cannot be matched to its row: the row count
+                // then differs and drift is reported as unknown rather than wrong.
+                _ => {}
+            }
+        }
+    }
+    rows
+}

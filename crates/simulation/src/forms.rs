@@ -1,0 +1,257 @@
+//! The compiled equations as first-order systems for the integrators:
+//! [`SecondOrder`] with state `y = (q, q̇)`, solving `M q̈ = f` (or the KKT system
+//! `[M Aᵀ; A 0] [q̈; λ] = [f; b]` with constraints) at each evaluation and projecting onto
+//! `Φ = 0`, `c = 0` after each step; [`Canonical`] with state `y = (q, p)`, Hamilton's
+//! equations `q̇ = M⁻¹(p − p₀)`, `ṗ = ∂L/∂q + Q`, for the symplectic method.
+
+use numeric::{cholesky_solve_in_place, solve_in_place, LinearError, OdeSystem, RhsError};
+
+use crate::compiled::Compiled;
+
+fn singular(error: LinearError) -> RhsError {
+    match error {
+        LinearError::Singular { column } => RhsError::SingularMatrix { column },
+        _ => RhsError::NotFinite,
+    }
+}
+
+/// `y = (q, q̇)`.
+pub(crate) struct SecondOrder<'c> {
+    compiled: &'c mut Compiled,
+    matrix: Vec<f64>,
+    vector: Vec<f64>,
+    gram: Vec<f64>,
+    multipliers: Vec<f64>,
+}
+
+impl<'c> SecondOrder<'c> {
+    pub(crate) fn new(compiled: &'c mut Compiled) -> Self {
+        let size = compiled.n + compiled.m;
+        let m = compiled.m;
+        SecondOrder {
+            compiled,
+            matrix: vec![0.0; size * size],
+            vector: vec![0.0; size],
+            gram: vec![0.0; m * m],
+            multipliers: vec![0.0; m],
+        }
+    }
+
+    /// Solves `(B Bᵀ) μ = r` and returns `Bᵀ μ` in `correction`, with `B` the rows `rows`
+    /// of `A` (n columns): the least-norm correction that removes the residual `r`.
+    fn least_norm(
+        &mut self,
+        a: &[f64],
+        rows: &[usize],
+        residual: &[f64],
+        correction: &mut [f64],
+    ) -> Result<(), RhsError> {
+        let n = self.compiled.n;
+        let k = rows.len();
+        for (i, &ri) in rows.iter().enumerate() {
+            for (j, &rj) in rows.iter().enumerate() {
+                self.gram[i * k + j] = (0..n).map(|c| a[ri * n + c] * a[rj * n + c]).sum();
+            }
+            self.multipliers[i] = residual[i];
+        }
+        solve_in_place(k, &mut self.gram[..k * k], &mut self.multipliers[..k])
+            .map_err(|_| RhsError::ProjectionFailed)?;
+        for (c, value) in correction.iter_mut().enumerate() {
+            *value = rows
+                .iter()
+                .enumerate()
+                .map(|(i, &r)| a[r * n + c] * self.multipliers[i])
+                .sum();
+        }
+        Ok(())
+    }
+
+    fn constraint_rows(&mut self) -> Vec<f64> {
+        let (n, m) = (self.compiled.n, self.compiled.m);
+        let out = self.compiled.dynamics.eval(&self.compiled.inputs);
+        out[n * n + n..n * n + n + m * n].to_vec()
+    }
+}
+
+impl OdeSystem for SecondOrder<'_> {
+    fn dimension(&self) -> usize {
+        2 * self.compiled.n
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        let (n, m) = (self.compiled.n, self.compiled.m);
+        let size = n + m;
+        let c = &mut *self.compiled;
+        c.inputs[..2 * n].copy_from_slice(y);
+        c.inputs[2 * n] = t;
+        let out = c.dynamics.eval(&c.inputs);
+        let (mass, rest) = out.split_at(n * n);
+        let (forcing, rest) = rest.split_at(n);
+        let (a, b) = rest.split_at(m * n);
+        for i in 0..n {
+            self.matrix[i * size..i * size + n].copy_from_slice(&mass[i * n..(i + 1) * n]);
+            for k in 0..m {
+                self.matrix[i * size + n + k] = a[k * n + i];
+            }
+            self.vector[i] = forcing[i];
+        }
+        for k in 0..m {
+            let row = (n + k) * size;
+            self.matrix[row..row + n].copy_from_slice(&a[k * n..(k + 1) * n]);
+            self.matrix[row + n..row + size].fill(0.0);
+            self.vector[n + k] = b[k];
+        }
+        if m == 0 {
+            // A mass matrix is symmetric positive definite where the model is regular:
+            // Cholesky first, LU (which also names the singular column) when that fails.
+            if cholesky_solve_in_place(n, &mut self.matrix, &mut self.vector).is_err() {
+                self.matrix.copy_from_slice(mass);
+                self.vector[..n].copy_from_slice(forcing);
+                solve_in_place(n, &mut self.matrix, &mut self.vector).map_err(singular)?;
+            }
+        } else {
+            solve_in_place(size, &mut self.matrix, &mut self.vector).map_err(singular)?;
+        }
+        dy[..n].copy_from_slice(&y[n..]);
+        dy[n..].copy_from_slice(&self.vector[..n]);
+        Ok(())
+    }
+
+    fn project(&mut self, t: f64, y: &mut [f64]) -> Result<bool, RhsError> {
+        let (n, m) = (self.compiled.n, self.compiled.m);
+        if m == 0 || !self.compiled.drift_known {
+            return Ok(false);
+        }
+        let holonomic = self.compiled.holonomic.clone();
+        let mut correction = vec![0.0; n];
+        // Positions: Gauss–Newton on Φ(q) = 0 with the Jacobian Φ_q = A (holonomic rows).
+        if !holonomic.is_empty() {
+            let mut converged = false;
+            for _ in 0..20 {
+                self.compiled.set_state(&y[..n], &y[n..], t);
+                let out = self.compiled.monitor.eval(&self.compiled.inputs);
+                let phi: Vec<f64> = out[1..1 + holonomic.len()].to_vec();
+                let scale = 1.0 + y[..n].iter().fold(0.0f64, |s, x| s.max(x.abs()));
+                if phi.iter().all(|x| x.abs() <= 1e-14 * scale) {
+                    converged = true;
+                    break;
+                }
+                let a = self.constraint_rows();
+                self.least_norm(&a, &holonomic, &phi, &mut correction)?;
+                for (q, dq) in y[..n].iter_mut().zip(&correction) {
+                    *q -= dq;
+                }
+            }
+            if !converged {
+                return Err(RhsError::ProjectionFailed);
+            }
+        }
+        // Velocities: c = A q̇ + c₀ is affine in q̇, so one least-norm correction is exact.
+        self.compiled.set_state(&y[..n], &y[n..], t);
+        let hol = holonomic.len();
+        let c: Vec<f64> =
+            self.compiled.monitor.eval(&self.compiled.inputs)[1 + hol..1 + hol + m].to_vec();
+        let a = self.constraint_rows();
+        let all: Vec<usize> = (0..m).collect();
+        self.least_norm(&a, &all, &c, &mut correction)?;
+        for (v, dv) in y[n..].iter_mut().zip(&correction) {
+            *v -= dv;
+        }
+        Ok(true)
+    }
+
+    fn event_count(&self) -> usize {
+        usize::from(self.compiled.events.is_some())
+    }
+
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        let n = self.compiled.n;
+        let c = &mut *self.compiled;
+        c.inputs[..2 * n].copy_from_slice(y);
+        c.inputs[2 * n] = t;
+        if let Some(events) = c.events.as_mut() {
+            let out = events.eval(&c.inputs);
+            g.copy_from_slice(&out[..g.len()]);
+        }
+    }
+}
+
+/// `y = (q, p)`.
+pub(crate) struct Canonical<'c> {
+    compiled: &'c mut Compiled,
+    matrix: Vec<f64>,
+    velocity: Vec<f64>,
+}
+
+impl<'c> Canonical<'c> {
+    pub(crate) fn new(compiled: &'c mut Compiled) -> Self {
+        let n = compiled.n;
+        Canonical {
+            compiled,
+            matrix: vec![0.0; n * n],
+            velocity: vec![0.0; n],
+        }
+    }
+
+    /// `q̇ = M⁻¹ (p − p₀)` at `(t, q, p)`, left in `self.velocity`.
+    fn solve_velocity(&mut self, t: f64, y: &[f64]) -> Result<(), RhsError> {
+        let n = self.compiled.n;
+        let c = &mut *self.compiled;
+        c.inputs[..n].copy_from_slice(&y[..n]);
+        c.inputs[n..2 * n].fill(0.0);
+        c.inputs[2 * n] = t;
+        let Some((mass_momentum, _)) = c.canonical.as_mut() else {
+            return Err(RhsError::NotFinite);
+        };
+        let out = mass_momentum.eval(&c.inputs);
+        self.matrix.copy_from_slice(&out[..n * n]);
+        for i in 0..n {
+            self.velocity[i] = y[n + i] - out[n * n + i];
+        }
+        solve_in_place(n, &mut self.matrix, &mut self.velocity).map_err(singular)
+    }
+
+    /// The rates `q̇` of a canonical state.
+    pub(crate) fn velocity(&mut self, t: f64, y: &[f64]) -> Result<Vec<f64>, RhsError> {
+        self.solve_velocity(t, y)?;
+        Ok(self.velocity.clone())
+    }
+}
+
+impl OdeSystem for Canonical<'_> {
+    fn dimension(&self) -> usize {
+        2 * self.compiled.n
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        let n = self.compiled.n;
+        self.solve_velocity(t, y)?;
+        let c = &mut *self.compiled;
+        c.inputs[n..2 * n].copy_from_slice(&self.velocity);
+        let Some((_, forces)) = c.canonical.as_mut() else {
+            return Err(RhsError::NotFinite);
+        };
+        let out = forces.eval(&c.inputs);
+        dy[..n].copy_from_slice(&self.velocity);
+        dy[n..].copy_from_slice(&out[..n]);
+        Ok(())
+    }
+
+    fn event_count(&self) -> usize {
+        usize::from(self.compiled.events.is_some())
+    }
+
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        let n = self.compiled.n;
+        if self.solve_velocity(t, y).is_err() {
+            g.fill(f64::NAN);
+            return;
+        }
+        let c = &mut *self.compiled;
+        c.inputs[n..2 * n].copy_from_slice(&self.velocity);
+        if let Some(events) = c.events.as_mut() {
+            let out = events.eval(&c.inputs);
+            g.copy_from_slice(&out[..g.len()]);
+        }
+    }
+}
