@@ -30,9 +30,21 @@
 #![warn(missing_docs)]
 
 mod equations;
+pub mod equilibria;
+pub mod linearize;
+mod polynomial_rest;
+mod reactions;
 mod system;
+mod unilateral;
 
-pub use equations::{derive, Elimination, Equations, FirstIntegral, MechanicsError};
+pub use equations::{
+    angular_velocity, derive, Elimination, Equations, FirstIntegral, MechanicsError,
+};
+pub use polynomial_rest::RestPolynomial;
+pub use reactions::{
+    reactions, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release, ReleaseKind,
+};
 pub use system::{
     rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,
 };
+pub use unilateral::{along_motion, scan as scan_unilateral, Unilateral};

@@ -109,10 +109,12 @@ pub struct System {
     coordinates: Vec<String>,
     driven: Vec<(String, Expr)>,
     parameters: Vec<(String, Option<Expr>)>,
+    inputs: Vec<(String, Option<Expr>)>,
     particles: Vec<Particle>,
     bodies: Vec<RigidBody>,
     loads: Vec<Load>,
     constraints: Vec<Constraint>,
+    points: Vec<(String, Vector)>,
 }
 
 impl System {
@@ -137,6 +139,18 @@ impl System {
     /// Adds a parameter with its value, if known.
     pub fn add_parameter(&mut self, name: &str, value: Option<Expr>) {
         self.parameters.push((name.to_string(), value));
+    }
+
+    /// Records an input that stays a symbol in the expressions, with its constant value if
+    /// the model gives one (equilibria hold inputs at these values).
+    pub fn add_input(&mut self, name: &str, value: Option<Expr>) {
+        self.inputs.push((name.to_string(), value));
+    }
+
+    /// Inputs kept as symbols, with their constant values.
+    #[must_use]
+    pub fn inputs(&self) -> &[(String, Option<Expr>)] {
+        &self.inputs
     }
 
     /// Adds a particle.
@@ -167,6 +181,18 @@ impl System {
     /// Adds a constraint.
     pub fn add_constraint(&mut self, constraint: Constraint) {
         self.constraints.push(constraint);
+    }
+
+    /// Records a named point's position, for reports (kinematics of every point the model
+    /// names, not only those that carry mass).
+    pub fn add_point(&mut self, name: &str, position: Vector) {
+        self.points.push((name.to_string(), position));
+    }
+
+    /// The named points and their positions, in the order they were declared.
+    #[must_use]
+    pub fn points(&self) -> &[(String, Vector)] {
+        &self.points
     }
 
     /// The independent coordinates' names.

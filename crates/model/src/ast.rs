@@ -170,6 +170,35 @@ pub struct BodyClauses {
     pub inertia: Option<InertiaClause>,
 }
 
+/// What a `reaction NAME: …` statement releases.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReleaseWord {
+    /// `hinge P on B`: a force, every component.
+    Hinge,
+    /// `contact P on B normal n`: the normal force along `n` only, push only.
+    Contact,
+    /// `rope P on B along n`: the tension along `n` only, pull only.
+    Rope,
+    /// `clamp P on B`: a force and a couple, every component.
+    Clamp,
+    /// `rolling ROLL normal n`: a rolling constraint's force split into the normal force
+    /// along `n` and friction.
+    Rolling,
+}
+
+/// `reaction NAME: hinge|contact|rope|clamp P on B1, B2 [normal|along n]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReleaseSpec {
+    /// Which kind.
+    pub word: ReleaseWord,
+    /// The point where the constraint acts; for `rolling`, the rolling constraint's name.
+    pub point: Ident,
+    /// The bodies or particles the reaction acts on (released together; none for `rolling`).
+    pub members: Vec<Ident>,
+    /// The direction for `contact` and `rope`.
+    pub direction: Option<Expr>,
+}
+
 /// The kinds of constraint.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ConstraintSpec {
@@ -336,6 +365,13 @@ pub enum StatementKind {
     },
     /// `reactions c1, c2`.
     Reactions(Vec<Ident>),
+    /// `reaction NAME: hinge P on B` (and `contact`, `rope`): a reaction at a point.
+    Release {
+        /// The reaction's name.
+        name: Ident,
+        /// What is released, where, on what.
+        spec: ReleaseSpec,
+    },
     /// `initial x = 0.1, x' = 0`.
     Initial(Vec<InitialValue>),
     /// `simulate from 0 to 10 step 0.01`.
@@ -367,7 +403,7 @@ impl StatementKind {
             StatementKind::Couple { .. } => "couple",
             StatementKind::GeneralizedForce { .. } => "generalized force",
             StatementKind::Constraint { .. } => "constraint",
-            StatementKind::Reactions(_) => "reactions",
+            StatementKind::Reactions(_) | StatementKind::Release { .. } => "reactions",
             StatementKind::Initial(_) => "initial",
             StatementKind::Simulate(_) => "simulate",
             StatementKind::Output(_) => "output",

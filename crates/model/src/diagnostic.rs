@@ -341,6 +341,24 @@ pub enum DiagnosticKind {
         /// What it is.
         kind: NameKind,
     },
+    /// A reaction at a point that is not declared.
+    #[error("reaction at unknown point `{name}`")]
+    UnknownReactionPoint {
+        /// The name.
+        name: String,
+    },
+    /// A reaction's member that is neither a body nor a particle.
+    #[error("`{name}` is not a body or a particle: a reaction acts on bodies and particles")]
+    NotABodyOrParticle {
+        /// The name.
+        name: String,
+    },
+    /// `reaction NAME: rolling C normal n` where `C` is not a rolling constraint.
+    #[error("`{name}` is not a rolling constraint")]
+    NotARollingConstraint {
+        /// The name.
+        name: String,
+    },
     /// A simulation setting that is not a valid value.
     #[error("invalid simulation setting: {reason}")]
     InvalidSimulation {
@@ -416,7 +434,9 @@ impl DiagnosticKind {
             ReservedName { .. } => "reserved".to_string(),
             UsedBeforeDefinition { .. } => "used here".to_string(),
             WrongKind { found, .. } => format!("this is {}", found.with_article()),
-            UndefinedPoint { .. } => "no such point".to_string(),
+            UndefinedPoint { .. } | UnknownReactionPoint { .. } => "no such point".to_string(),
+            NotABodyOrParticle { .. } => "not a body or particle".to_string(),
+            NotARollingConstraint { .. } => "not `rolling BODY at P`".to_string(),
             UnknownFunction { .. } => "no such function".to_string(),
             WrongArity { found, .. } => {
                 format!("{found} argument{}", if *found == 1 { "" } else { "s" })
@@ -480,6 +500,9 @@ impl DiagnosticKind {
             TooManyConstraints { .. } => "E305",
             NoCoordinates => "E306",
             ReactionNotConstraint { .. } => "E307",
+            UnknownReactionPoint { .. } => "E313",
+            NotABodyOrParticle { .. } => "E314",
+            NotARollingConstraint { .. } => "E315",
             InvalidSimulation { .. } => "E308",
             DuplicateSimulate { .. } => "E309",
             ConstraintWithoutCoordinates => "E310",

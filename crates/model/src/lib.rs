@@ -27,7 +27,9 @@ mod evaluate;
 pub mod lexer;
 mod lower;
 mod model;
+mod overrides;
 mod parser;
+mod reactions;
 mod render;
 mod span;
 mod summary;
@@ -42,10 +44,12 @@ pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
     ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,
     Function, Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output,
-    Parameter, ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Rotation,
-    Simulation,
+    Parameter, ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Release,
+    ReleaseMember, Rotation, Simulation,
 };
+pub use overrides::OverrideError;
 pub use parser::{parse, MAX_DEPTH};
+pub use reactions::reaction_requests;
 pub use render::{render, render_short, RenderOptions};
 pub use span::{line_col, LineCol, LineIndex, Span};
 pub use summary::Summary;

@@ -35,6 +35,26 @@ pub enum LowerError {
         /// Where.
         span: Span,
     },
+    /// A reaction's normal or rope direction that is the zero vector.
+    #[error(
+        "this direction is the zero vector: a contact normal or a rope's direction must not vanish"
+    )]
+    ZeroDirection {
+        /// Where.
+        span: Span,
+    },
+}
+
+impl LowerError {
+    /// Where in the model file.
+    #[must_use]
+    pub fn span(&self) -> Span {
+        match self {
+            LowerError::Shape { span, .. }
+            | LowerError::Unresolved { span }
+            | LowerError::ZeroDirection { span } => *span,
+        }
+    }
 }
 
 /// A lowered value.
@@ -44,8 +64,48 @@ enum Value {
     Vector(Vector),
 }
 
+/// A release for a reaction (see `crate::reactions`): the members' points are displaced by
+/// `displacement` (a combination of the extra coordinates), and a constraint may be dropped.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Shift {
+    /// Points moved with the members: particles' points and bodies' centres.
+    pub points: Vec<crate::model::PointId>,
+    /// Indices of released particles (for a particle at `origin`).
+    pub particles: Vec<usize>,
+    /// Released bodies (for a body centred at `origin`).
+    pub bodies: Vec<crate::model::BodyId>,
+    /// The displacement, in inertial components.
+    pub displacement: Option<Vector>,
+    /// The extra coordinates.
+    pub coordinates: Vec<String>,
+    /// A constraint left out.
+    pub dropped: Option<crate::model::ConstraintId>,
+    /// A driven coordinate lowered as a free one.
+    pub freed: Option<crate::model::CoordinateId>,
+    /// For a clamp: the small rotation `ψ` (components in the extra coordinates) and the pivot
+    /// `P` it turns the members about. Every position attached to the members then becomes
+    /// `r₀ + u + ψ × (r₀ − P)` and their bodies' rotations `(1 + ψ×) R`.
+    pub rotation: Option<(Vector, Vector)>,
+}
+
+fn cross(a: &Vector, b: &Vector) -> Vector {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn shifted(v: Vector, by: Option<&Vector>) -> Vector {
+    match by {
+        Some(d) => [v[0] + d[0], v[1] + d[1], v[2] + d[2]],
+        None => v,
+    }
+}
+
 struct Lowerer<'m> {
     model: &'m Model,
+    shift: Shift,
     coordinates: Vec<Option<(Cx, Cx)>>,
     constants: Vec<Option<Value>>,
     inputs: Vec<Option<Cx>>,
@@ -76,6 +136,47 @@ fn axis_index(axis: Axis) -> usize {
 }
 
 impl Lowerer<'_> {
+    /// `v` moved rigidly with the members when it is attached to them (depends on the
+    /// displacement) and the release has a rotation; `v` otherwise.
+    fn rigid(&self, v: Vector) -> Vector {
+        let Some((psi, pivot)) = self.shift.rotation.as_ref() else {
+            return v;
+        };
+        if !self.moves(&v) {
+            return v;
+        }
+        let zero = self.at_rest();
+        let r0 = v.map(|x| x.subs(&zero).normal());
+        let d: Vector = [r0[0] - pivot[0], r0[1] - pivot[1], r0[2] - pivot[2]];
+        let turn = cross(psi, &d);
+        let by = self
+            .shift
+            .displacement
+            .unwrap_or([Cx::zero(), Cx::zero(), Cx::zero()]);
+        [0, 1, 2].map(|k| (r0[k] + by[k] + turn[k]).normal())
+    }
+
+    /// Every extra coordinate set to zero.
+    fn at_rest(&self) -> Vec<(Cx, Cx)> {
+        self.shift
+            .coordinates
+            .iter()
+            .map(|u| (Cx::coordinate(u), Cx::zero()))
+            .collect()
+    }
+
+    /// Whether `v` depends on a released displacement.
+    fn moves(&self, v: &Vector) -> bool {
+        let symbols: Vec<cas::Symbol> = self
+            .shift
+            .coordinates
+            .iter()
+            .filter_map(|u| Cx::coordinate(u).as_symbol())
+            .collect();
+        v.iter()
+            .any(|x| symbols.iter().any(|s| !x.diff(*s).is_zero()))
+    }
+
     fn scalar(&self, e: &Expr) -> Result<Cx, LowerError> {
         match self.expr(e)? {
             Value::Scalar(x) => Ok(x),
@@ -236,8 +337,22 @@ impl Lowerer<'_> {
 /// # Errors
 /// A [`LowerError`] with the span of the offending expression.
 pub fn lower(model: &Model) -> Result<System, LowerError> {
+    lower_with(model, Shift::default())
+}
+
+/// [`lower`], with the members of a release displaced (see [`Shift`]).
+pub(crate) fn lower_with(model: &Model, shift: Shift) -> Result<System, LowerError> {
+    lower_parts(model, shift).map(|parts| parts.0)
+}
+
+/// The points' positions and the frames' rotations of a lowering, by id (`None`: not lowered).
+pub(crate) type Geometry = (Vec<Option<Vector>>, Vec<Option<Rotation>>);
+
+/// [`lower_with`], also returning the points and frames.
+pub(crate) fn lower_parts(model: &Model, shift: Shift) -> Result<(System, Geometry), LowerError> {
     let mut l = Lowerer {
         model,
+        shift,
         coordinates: vec![None; model.coordinates().len()],
         constants: vec![None; model.constants().len()],
         inputs: vec![None; model.inputs().len()],
@@ -255,7 +370,8 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
             Declaration::Coordinate(id) => {
                 let c = model.coordinate(id);
                 let name = &c.name.name;
-                let value = match &c.driven {
+                let driven = c.driven.as_ref().filter(|_| l.shift.freed != Some(id));
+                let value = match driven {
                     Some(motion) => {
                         let f = l.scalar(motion)?;
                         system.add_driven(name, f);
@@ -283,10 +399,14 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
                         if timed {
                             x
                         } else {
+                            system.add_input(&input.name.name, Some(x));
                             symbol
                         }
                     }
-                    None => symbol,
+                    None => {
+                        system.add_input(&input.name.name, None);
+                        symbol
+                    }
                 };
                 l.inputs[id.index()] = Some(value);
             }
@@ -314,8 +434,14 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
             }
             Declaration::Point(id) => {
                 if let Some(position) = &model.point(id).position {
-                    let v = l.vector(position)?;
-                    l.points[id.index()] = Some(v.map(Cx::normal));
+                    let mut v = l.vector(position)?;
+                    // A point defined from a released point already moves with it.
+                    if l.shift.points.contains(&id) && !l.moves(&v) {
+                        v = shifted(v, l.shift.displacement.as_ref());
+                    }
+                    let v = l.rigid(v.map(Cx::normal));
+                    system.add_point(&model.point(id).name.name, v);
+                    l.points[id.index()] = Some(v);
                 }
             }
             Declaration::Body(id) => {
@@ -326,13 +452,20 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
             Declaration::Constraint(_) => {}
         }
     }
-    for p in model.particles() {
-        let position = l
+    for u in &l.shift.coordinates {
+        system.add_coordinate(u);
+    }
+    for (index, p) in model.particles().iter().enumerate() {
+        let mut position = l
             .points
             .get(p.point.index())
             .copied()
             .flatten()
             .ok_or(LowerError::Unresolved { span: p.span })?;
+        // `origin` is shared by everything, so a particle there is displaced here.
+        if p.point.index() == 0 && l.shift.particles.contains(&index) {
+            position = l.rigid(shifted(position, l.shift.displacement.as_ref()));
+        }
         system.add_particle(Particle {
             name: model.point(p.point).name.name.clone(),
             mass: l.scalar(&p.mass)?,
@@ -352,7 +485,7 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
                 let rest = rest.filter(|r| !r.is_zero());
                 let v = match connection {
                     Connection::Points { from, to } => {
-                        let (a, b) = (l.vector(from)?, l.vector(to)?);
+                        let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
                         let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
                         let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
                         match rest {
@@ -375,7 +508,7 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
                 let c = l.scalar(coefficient)?;
                 let rate2 = match connection {
                     Connection::Points { from, to } => {
-                        let (a, b) = (l.vector(from)?, l.vector(to)?);
+                        let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
                         let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
                         let dd: Vector = d.map(Cx::dt);
                         let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -390,7 +523,7 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
             Load::Potential(v) => MLoad::Potential(l.scalar(v)?),
             Load::Force { force, point } => MLoad::Force {
                 force: l.vector(force)?,
-                point: l.vector(point)?,
+                point: l.rigid(l.vector(point)?),
             },
             Load::Couple { moment, body } => MLoad::Couple {
                 moment: l.vector(moment)?,
@@ -414,7 +547,10 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
         };
         system.add_load(load);
     }
-    for c in model.constraints() {
+    for (index, c) in model.constraints().iter().enumerate() {
+        if l.shift.dropped.is_some_and(|d| d.index() == index) {
+            continue;
+        }
         let name = c
             .name
             .as_ref()
@@ -484,7 +620,7 @@ pub fn lower(model: &Model) -> Result<System, LowerError> {
         };
         system.add_constraint(MConstraint { name, equations });
     }
-    Ok(system)
+    Ok((system, (l.points, l.frames)))
 }
 
 fn angular_velocity(r: &Rotation) -> Vector {
@@ -503,18 +639,37 @@ fn lower_body(
 ) -> Result<usize, LowerError> {
     let unresolved = LowerError::Unresolved { span: b.name.span };
     let mass = l.scalar(&b.mass)?;
-    let centre = l
+    let mut centre = l
         .points
         .get(b.centre.index())
         .copied()
         .flatten()
         .ok_or(unresolved.clone())?;
-    let rotation = l
+    let released = l
+        .shift
+        .bodies
+        .iter()
+        .any(|id| l.model.body(*id).name == b.name);
+    if b.centre.index() == 0 && released {
+        centre = l.rigid(shifted(centre, l.shift.displacement.as_ref()));
+    }
+    let mut rotation = l
         .frames
         .get(b.frame.index())
         .copied()
         .flatten()
         .ok_or(unresolved.clone())?;
+    let unturned = rotation;
+    if let (true, Some((psi, _))) = (released, l.shift.rotation.as_ref()) {
+        // (1 + ψ×) R: exact to first order in ψ, all that a reaction (a derivative at ψ = 0)
+        // sees.
+        for (i, row) in rotation.iter_mut().enumerate() {
+            for (j, entry) in row.iter_mut().enumerate() {
+                let column: Vector = [unturned[0][j], unturned[1][j], unturned[2][j]];
+                *entry = (unturned[i][j] + cross(psi, &column)[i]).normal();
+            }
+        }
+    }
     let c = &b.inertia.components;
     let get = |i: usize| -> Result<Cx, LowerError> {
         c[i].as_ref().map_or(Ok(Cx::zero()), |e| l.scalar(e))
@@ -528,9 +683,12 @@ fn lower_body(
             .copied()
             .flatten()
             .ok_or(unresolved)?;
-        let d: Vector = [centre[0] - p[0], centre[1] - p[1], centre[2] - p[2]];
+        // The transfer uses the constrained centre: a released displacement moves the body,
+        // not its inertia.
+        let zero = l.at_rest();
+        let d: Vector = [0, 1, 2].map(|k| (centre[k] - p[k]).subs(&zero).normal());
         let r: Vec<Cx> = (0..3)
-            .map(|i| (0..3).map(|k| rotation[k][i] * d[k]).sum::<Cx>().normal())
+            .map(|i| (0..3).map(|k| unturned[k][i] * d[k]).sum::<Cx>().normal())
             .collect();
         let r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
         for (i, row) in inertia.iter_mut().enumerate() {

@@ -548,6 +548,36 @@ pub enum ReactionTarget {
     Driven(CoordinateId),
 }
 
+/// What a reaction at a point acts on: a body, or the particle at a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReleaseMember {
+    /// A rigid body.
+    Body(BodyId),
+    /// A particle, by its index in [`Model::particles`].
+    Particle(usize),
+}
+
+/// A reaction at a point, `reaction NAME: hinge|contact|rope P on B1, B2 [normal|along n]`:
+/// the force that the constraint at `point` exerts on `members`, found by releasing them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Release {
+    /// Its name.
+    pub name: Name,
+    /// Which kind of constraint.
+    pub word: crate::ast::ReleaseWord,
+    /// Where the constraint acts.
+    pub point: PointId,
+    /// The bodies and particles released together.
+    pub members: Vec<ReleaseMember>,
+    /// The contact normal or the rope's direction (pointing into the members for a contact or
+    /// a rolling contact, away from them along the rope for a rope).
+    pub direction: Option<Expr>,
+    /// For `rolling ROLL normal n`: the rolling constraint (dropped when released).
+    pub constraint: Option<ConstraintId>,
+    /// The statement.
+    pub span: Span,
+}
+
 /// An initial value of a coordinate or of its rate.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InitialValue {
@@ -621,6 +651,7 @@ pub struct Model {
     pub(crate) loads: Vec<LoadItem>,
     pub(crate) constraints: Vec<Constraint>,
     pub(crate) reactions: Vec<ReactionTarget>,
+    pub(crate) releases: Vec<Release>,
     pub(crate) initial: Vec<InitialValue>,
     pub(crate) simulation: Option<Simulation>,
     pub(crate) outputs: Vec<Output>,
@@ -715,6 +746,12 @@ impl Model {
     #[must_use]
     pub fn reactions(&self) -> &[ReactionTarget] {
         &self.reactions
+    }
+
+    /// The reactions at points asked for (`reaction NAME: hinge P on B`, …).
+    #[must_use]
+    pub fn releases(&self) -> &[Release] {
+        &self.releases
     }
 
     /// Initial values given (the others are zero).

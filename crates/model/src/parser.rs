@@ -335,7 +335,11 @@ impl<'s> Parser<'s> {
             }
             "constraint" => self.constraint()?,
             "reaction" | "reactions" => {
-                StatementKind::Reactions(self.ident_list("a constraint name")?)
+                if self.at(Token::Name) && self.nth(1).token == Token::Colon {
+                    self.release()?
+                } else {
+                    StatementKind::Reactions(self.ident_list("a constraint name")?)
+                }
             }
             "initial" => self.initial()?,
             "simulate" => self.simulate()?,
@@ -563,6 +567,65 @@ impl<'s> Parser<'s> {
             }
         };
         Ok(StatementKind::Constraint { name, spec })
+    }
+
+    /// `reaction NAME: hinge|contact|rope|clamp P on B1, B2 [normal|along n]` or
+    /// `reaction NAME: rolling ROLL normal n`.
+    fn release(&mut self) -> ParseResult<StatementKind> {
+        let name = self.ident("a reaction name")?;
+        self.bump();
+        let help = "Write `reaction NAME: hinge P on BODY`, `reaction NAME: clamp P on BODY`, `reaction NAME: contact P on BODY normal n` or `reaction NAME: rope P on BODY along n`.";
+        let word = if self.eat_keyword("hinge").is_some() {
+            ReleaseWord::Hinge
+        } else if self.eat_keyword("contact").is_some() {
+            ReleaseWord::Contact
+        } else if self.eat_keyword("rope").is_some() {
+            ReleaseWord::Rope
+        } else if self.eat_keyword("clamp").is_some() {
+            ReleaseWord::Clamp
+        } else if self.eat_keyword("rolling").is_some() {
+            let point = self.ident("the name of a rolling constraint")?;
+            self.expect_keyword("normal")
+                .map_err(|d| d.with_help("Write `reaction NAME: rolling ROLL normal n`."))?;
+            return Ok(StatementKind::Release {
+                name,
+                spec: ReleaseSpec {
+                    word: ReleaseWord::Rolling,
+                    point,
+                    members: Vec::new(),
+                    direction: Some(self.expr()?),
+                },
+            });
+        } else {
+            return Err(self
+                .unexpected("`hinge`, `contact`, `rope`, `clamp` or `rolling`")
+                .with_help(help));
+        };
+        let point = self.ident("the point where the constraint acts")?;
+        self.expect_keyword("on").map_err(|d| d.with_help(help))?;
+        let members = self.ident_list("a body or particle")?;
+        let direction = match word {
+            ReleaseWord::Hinge | ReleaseWord::Clamp | ReleaseWord::Rolling => None,
+            ReleaseWord::Contact => {
+                self.expect_keyword("normal")
+                    .map_err(|d| d.with_help(help))?;
+                Some(self.expr()?)
+            }
+            ReleaseWord::Rope => {
+                self.expect_keyword("along")
+                    .map_err(|d| d.with_help(help))?;
+                Some(self.expr()?)
+            }
+        };
+        Ok(StatementKind::Release {
+            name,
+            spec: ReleaseSpec {
+                word,
+                point,
+                members,
+                direction,
+            },
+        })
     }
 
     fn initial(&mut self) -> ParseResult<StatementKind> {

@@ -122,6 +122,20 @@ impl Model {
                     format!("driving force of {}", self.coordinate(*id).name.name)
                 }
             })
+            .chain(self.releases.iter().map(|r| {
+                let word = match r.word {
+                    crate::ast::ReleaseWord::Hinge => "hinge",
+                    crate::ast::ReleaseWord::Contact => "contact",
+                    crate::ast::ReleaseWord::Rope => "rope",
+                    crate::ast::ReleaseWord::Clamp => "clamp",
+                    crate::ast::ReleaseWord::Rolling => "rolling",
+                };
+                format!(
+                    "{} ({word} at {})",
+                    r.name.name,
+                    self.point(r.point).name.name
+                )
+            }))
             .collect();
         Summary {
             degrees_of_freedom: free.len().saturating_sub(holonomic),

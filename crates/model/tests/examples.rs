@@ -86,6 +86,7 @@ forces:
   force F*N.x at A
   generalized force C on theta
 constraints: none
+reactions: hinge_A (hinge at A), track (contact at A)
 "
     );
 }

@@ -1,4 +1,4 @@
-//! The n-link pendulum, written as a model file for n = 1…3, against the closed form
+//! The n-link pendulum, written as a model file for n = 1…10, against the closed form
 //! `M_ij = μ_ij l_i l_j cos(θ_i − θ_j)`,
 //! `f_i = −Σ_j μ_ij l_i l_j sin(θ_i − θ_j) θ̇_j² − μ_ii g l_i sin θ_i`, `μ_ij = Σ_{k ≥ max(i,j)} m_k`;
 //! and the lowering of every example's particle positions against `Model::evaluate` at
@@ -30,8 +30,7 @@ fn nlink_model(n: usize) -> String {
 
 #[test]
 fn nlink_matches_the_closed_form() {
-    // n ≤ 3 keeps the test fast; n up to 10 is too slow for a unit test in the debug profile.
-    for n in 1..=3 {
+    for n in 1..=10 {
         let model = model::load(&nlink_model(n)).expect("generated model loads");
         let system = model::lower(&model).expect("lowers");
         let eq = mechanics::derive(&system).expect("derives");
@@ -54,6 +53,16 @@ fn nlink_matches_the_closed_form() {
                 - mu(i, i) * g * l[i] * th[i].sin();
             assert!(eq.forcing()[i].equals(want), "n = {n}: f[{i}]");
         }
+        // Conservative and time-free: the energy K + V is a first integral for every n.
+        let energy = eq
+            .first_integrals()
+            .iter()
+            .find(|f| f.coordinate.is_none())
+            .expect("an energy integral");
+        assert_eq!(energy.kind, "energy");
+        assert!(energy
+            .value
+            .equals(eq.kinetic_energy() + eq.potential_energy()));
     }
 }
 

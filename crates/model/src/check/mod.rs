@@ -42,6 +42,7 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
             loads: Vec::new(),
             constraints: Vec::new(),
             reactions: Vec::new(),
+            releases: Vec::new(),
             initial: Vec::new(),
             simulation: None,
             outputs: Vec::new(),
@@ -429,6 +430,7 @@ impl Checker {
                     self.reaction(ident);
                 }
             }
+            StatementKind::Release { name, spec } => self.release(name, spec, statement.span),
             StatementKind::Initial(values) => {
                 for value in values {
                     self.initial(value);
@@ -969,6 +971,128 @@ impl Checker {
         };
         if !self.model.reactions.contains(&target) {
             self.model.reactions.push(target);
+        }
+    }
+
+    fn release(&mut self, ident: &Ident, spec: &ast::ReleaseSpec, span: Span) {
+        if spec.word == ast::ReleaseWord::Rolling {
+            self.rolling_release(ident, spec, span);
+            return;
+        }
+        let point = if self.scope.get(&spec.point.name).is_none() && spec.point.name != "origin" {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    DiagnosticKind::UnknownReactionPoint {
+                        name: spec.point.name.clone(),
+                    },
+                    spec.point.span,
+                )
+                .with_help(format!(
+                    "Declare it first: `point {} = …`, or name a point the constraint acts at.",
+                    spec.point.name
+                )),
+            );
+            None
+        } else {
+            match self.lookup(&spec.point, NameKind::Point) {
+                Some(Target::Point(id)) => Some(id),
+                _ => None,
+            }
+        };
+        let mut members = Vec::new();
+        let mut complete = true;
+        for member in &spec.members {
+            let entry = self.scope.get(&member.name).copied();
+            let found = match entry.map(|e| e.target) {
+                Some(Target::Body(id)) => Some(ReleaseMember::Body(id)),
+                Some(Target::Point(id)) => self
+                    .model
+                    .particles
+                    .iter()
+                    .position(|p| p.point == id)
+                    .map(ReleaseMember::Particle),
+                Some(Target::Poisoned) => {
+                    complete = false;
+                    continue;
+                }
+                _ => None,
+            };
+            match found {
+                Some(m) if !members.contains(&m) => members.push(m),
+                Some(_) => {}
+                None => {
+                    complete = false;
+                    self.diagnostics.push(
+                    Diagnostic::new(
+                        DiagnosticKind::NotABodyOrParticle {
+                            name: member.name.clone(),
+                        },
+                        member.span,
+                    )
+                    .with_help(
+                        "Name the bodies (`body NAME …`) or particles (`particle P …`, declared above) that the reaction acts on.",
+                    ),
+                    );
+                }
+            }
+        }
+        let direction = spec.direction.as_ref().and_then(|d| {
+            self.expr(
+                d,
+                Type::Vector,
+                Place::configuration("a reaction's direction"),
+            )
+        });
+        if spec.direction.is_some() && direction.is_none() {
+            return;
+        }
+        if let Some(point) = point {
+            if complete {
+                self.model.releases.push(Release {
+                    name: name(ident),
+                    word: spec.word,
+                    point,
+                    members,
+                    direction,
+                    constraint: None,
+                    span,
+                });
+            }
+        }
+    }
+
+    /// `reaction NAME: rolling ROLL normal n`: the rolling constraint's body and contact point.
+    fn rolling_release(&mut self, ident: &Ident, spec: &ast::ReleaseSpec, span: Span) {
+        let direction = spec
+            .direction
+            .as_ref()
+            .and_then(|d| self.expr(d, Type::Vector, Place::configuration("a contact normal")));
+        let Some(Target::Constraint(id)) = self.lookup(&spec.point, NameKind::Constraint) else {
+            return;
+        };
+        let ConstraintKind::Rolling { body, contact } = self.model.constraints[id.index()].kind
+        else {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    DiagnosticKind::NotARollingConstraint {
+                        name: spec.point.name.clone(),
+                    },
+                    spec.point.span,
+                )
+                .with_help("Name a constraint written `constraint ROLL: rolling BODY at P`."),
+            );
+            return;
+        };
+        if let Some(direction) = direction {
+            self.model.releases.push(Release {
+                name: name(ident),
+                word: spec.word,
+                point: contact,
+                members: vec![ReleaseMember::Body(body)],
+                direction: Some(direction),
+                constraint: Some(id),
+                span,
+            });
         }
     }
 
