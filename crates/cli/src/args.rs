@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// lagrange — analytical mechanics from a short model file: kinematics, the Lagrangian, the
 /// equations of motion, and the tools of the symbolic core.
@@ -21,6 +21,16 @@ pub enum Command {
     Solve {
         /// The model file (`.lag`).
         model: PathBuf,
+        /// Output: the terminal, MyST Markdown, a standalone LaTeX document, or JSON.
+        #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
+        format: ReportFormat,
+        /// Write the report (and its figures) into this directory instead of printing it.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Override a parameter, an input or an initial value for this run:
+        /// `--set k=40 --set theta=0.3` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
     },
     /// Check a model file and print its summary (degrees of freedom, coordinates, bodies,
     /// forces, constraints), or its errors.
@@ -35,7 +45,52 @@ pub enum Command {
         /// Output: text for people, or JSON (schema in docs/json.md).
         #[arg(long, value_enum, default_value_t = EomFormat::Text)]
         format: EomFormat,
+        /// Override a parameter, an input or an initial value for this run:
+        /// `--set k=40 --set theta=0.3` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
     },
+    /// Print the constraint reactions a model asks for (`reactions …`, `reaction NAME: …`),
+    /// by Lagrange's equations of the 1st kind and by Newton–Euler, and whether they agree.
+    Reactions {
+        /// The model file (`.lag`).
+        model: PathBuf,
+        /// Output: text for people, or JSON (schema in docs/json.md).
+        #[arg(long, value_enum, default_value_t = EomFormat::Text)]
+        format: EomFormat,
+        /// Override a parameter, an input or an initial value for this run:
+        /// `--set k=40 --set theta=0.3` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+    },
+    /// Find all equilibria (rest states with inputs held constant), exactly where possible,
+    /// and decide their stability.
+    Equilibria {
+        /// The model file (`.lag`).
+        model: PathBuf,
+        /// Search and parameter options.
+        #[command(flatten)]
+        options: EquilibriumOptions,
+    },
+    /// Linearize about every equilibrium: M0, C0, K0, B0, natural frequencies, modes,
+    /// eigenvalues, state-space A, B and controllability.
+    Linearize {
+        /// The model file (`.lag`).
+        model: PathBuf,
+        /// Search and parameter options.
+        #[command(flatten)]
+        options: EquilibriumOptions,
+        /// Only this equilibrium (index as listed by `lagrange equilibria`).
+        #[arg(long)]
+        equilibrium: Option<usize>,
+        /// Initial deviation for the free response in closed form: `--initial theta=0.01`,
+        /// a rate as `--initial "theta'=0.1"` (repeatable; undamped systems).
+        #[arg(long, value_name = "NAME=VALUE")]
+        initial: Vec<String>,
+    },
+    /// Simulate a model: integrate the equations of motion, write the time history as CSV
+    /// (`t`, coordinates, rates `q_d`, energy error, constraint drift) and a summary line.
+    Simulate(crate::commands::simulate::SimulateArgs),
     /// Print the normal form of an expression (SymPy syntax; rates as `q_d`, `q_dd`).
     Simplify {
         /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)".
@@ -82,4 +137,60 @@ pub enum EomFormat {
     Text,
     /// JSON, `"schema": 1` (docs/json.md).
     Json,
+}
+
+/// How `lagrange solve` writes its report.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReportFormat {
+    /// Unicode for the terminal, 80 columns.
+    Text,
+    /// MyST Markdown (math in `$$…$$`), for a Jupyter Book.
+    Md,
+    /// A standalone LaTeX document.
+    Tex,
+    /// Everything as JSON (docs/json.md).
+    Json,
+}
+
+impl ReportFormat {
+    /// The file extension of a report written with `--out`.
+    pub fn extension(self) -> &'static str {
+        match self {
+            ReportFormat::Text => "txt",
+            ReportFormat::Md => "md",
+            ReportFormat::Tex => "tex",
+            ReportFormat::Json => "json",
+        }
+    }
+}
+
+/// Options shared by `lagrange equilibria` and `lagrange linearize`.
+#[derive(Args, Debug, Clone)]
+pub struct EquilibriumOptions {
+    /// Output: text for people, or JSON (schema in docs/json.md).
+    #[arg(long, value_enum, default_value_t = EomFormat::Text)]
+    pub format: EomFormat,
+    /// Override a parameter's or input's value, e.g. `--set Omega=3` (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// The search range of a non-angle coordinate, e.g. `--range x=-2..2` (default −10..10;
+    /// angles always span one turn).
+    #[arg(long = "range", value_name = "NAME=A..B")]
+    pub range: Vec<String>,
+    /// Steady motion: a cyclic coordinate turning at a constant rate, e.g. `--steady phi=2`
+    /// (repeatable); the relative equilibria of the other coordinates are found, and their
+    /// stability by Routh's reduced potential. The rate is then the parameter `phi_d` (for
+    /// `--sweep phi_d=1..5`).
+    #[arg(long = "steady", value_name = "NAME=RATE")]
+    pub steady: Vec<String>,
+    /// Sweep a parameter: `--sweep Omega=0..10` prints equilibria and stability at each step.
+    #[arg(long, value_name = "NAME=A..B")]
+    pub sweep: Option<String>,
+    /// Number of steps of a sweep.
+    #[arg(long, default_value_t = 20)]
+    pub steps: usize,
+    /// With `--sweep`: draw the bifurcation diagram (equilibria against the parameter,
+    /// stable filled, unstable open) to this `.svg` or `.png` file.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<std::path::PathBuf>,
 }

@@ -1,24 +1,10 @@
 //! The `lagrange` binary, run for real: the symbolic-core commands, `check` and `solve` on the
 //! seed's examples, and the exit codes and messages of bad input.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn lagrange(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .current_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."))
-        .output()
-        .expect("the lagrange binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{lagrange, stderr, stdout};
 
 #[test]
 fn simplify_prints_the_normal_form_in_each_dialect() {
@@ -116,4 +102,64 @@ fn a_missing_model_file_is_an_error_not_a_panic() {
     let o = lagrange(&["solve", "examples/does-not-exist.lag"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("cannot read the model file"));
+}
+
+#[test]
+fn a_reader_that_stops_early_does_not_make_it_panic() {
+    use std::io::Read;
+    use std::process::Stdio;
+    // A 12-link pendulum: its equations are larger than a pipe's buffer (64 KiB), so the
+    // writer is still writing when the reader goes away.
+    let n = 12;
+    let mut model = String::from("coordinates ");
+    model += &(1..=n)
+        .map(|i| format!("th{i}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    model += "\nparameters g = 9.81";
+    for i in 1..=n {
+        model += &format!(", m{i} = 1, l{i} = 1");
+    }
+    model += "\nframe N\n";
+    for i in 1..=n {
+        let prev = if i > 1 {
+            format!("P{} + ", i - 1)
+        } else {
+            String::new()
+        };
+        model += &format!("point P{i} = {prev}l{i}*sin(th{i})*N.x - l{i}*cos(th{i})*N.y\n");
+        model += &format!("particle P{i} mass m{i}\n");
+    }
+    model += "gravity -g*N.y\n";
+    let path = std::env::temp_dir().join(format!("lagrange-pipe-{}.lag", std::process::id()));
+    std::fs::write(&path, model).expect("temporary model written");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args([
+            "eom".as_ref(),
+            path.as_os_str(),
+            "--format".as_ref(),
+            "json".as_ref(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the lagrange binary runs");
+    // Read one byte, then close the pipe as `head -c 1` would.
+    let mut first = [0u8; 1];
+    child
+        .stdout
+        .take()
+        .expect("piped stdout")
+        .read_exact(&mut first)
+        .expect("some output");
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .expect("piped stderr")
+        .read_to_string(&mut err)
+        .expect("stderr reads");
+    child.wait().expect("the process ends");
+    let _ = std::fs::remove_file(&path);
+    assert!(!err.contains("panicked"), "{err}");
 }

@@ -2,9 +2,24 @@
 //! (schema in `docs/json.md`, `"schema": 1`).
 #![warn(missing_docs)]
 
+pub mod document;
+mod reactions;
+pub mod solution;
+pub mod solution_equilibria;
+pub mod solution_reactions;
+
+pub use reactions::{reactions_json, UnilateralReport};
+mod bifurcation;
+mod plot;
+
+pub use bifurcation::{plot_bifurcation, BifurcationPoint};
+pub use plot::{plot_run, PlotError};
+
 use cas::print::to_sympy;
 use mechanics::{Equations, System};
 use serde_json::{json, Value};
+
+pub mod equilibria;
 
 /// The JSON schema version written by [`eom_json`].
 pub const SCHEMA: u32 = 1;
@@ -27,7 +42,10 @@ pub fn eom_json(system: &System, equations: &Equations) -> Value {
     let first_integrals: Vec<Value> = equations
         .first_integrals()
         .iter()
-        .map(|f| json!({ "kind": f.kind, "coordinate": f.coordinate, "value": s(&f.value) }))
+        .map(|f| {
+            let conditions: Vec<Value> = f.conditions.iter().map(s).collect();
+            json!({ "kind": f.kind, "coordinate": f.coordinate, "value": s(&f.value), "conditions": conditions })
+        })
         .collect();
     let eliminated: Vec<Value> = equations
         .eliminated()

@@ -3,24 +3,19 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use anyhow::Context;
 use cas::print::to_unicode;
 
 use crate::args::EomFormat;
 
 /// Derives and prints the equations of motion of a model file.
-pub fn run(path: &Path, format: EomFormat) -> anyhow::Result<ExitCode> {
-    let (model, _source) = match super::check::load(path)? {
+pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<ExitCode> {
+    let (model, _source) = match super::check::load_with_overrides(path, set)? {
         Ok(loaded) => loaded,
         Err(code) => return Ok(code),
     };
-    let system = model::lower(&model).context("cannot lower the model")?;
-    let equations = match mechanics::derive(&system) {
-        Ok(eq) => eq,
-        Err(error) => {
-            eprintln!("error: {error}");
-            return Ok(ExitCode::from(1));
-        }
+    let (system, equations) = match super::check::derive(path, &model)? {
+        Ok(derived) => derived,
+        Err(code) => return Ok(code),
     };
     match format {
         EomFormat::Json => {
@@ -40,54 +35,68 @@ pub fn run(path: &Path, format: EomFormat) -> anyhow::Result<ExitCode> {
             println!("K = {}", to_unicode(equations.kinetic_energy()));
             println!("V = {}", to_unicode(equations.potential_energy()));
             println!();
-            let lambdas = !equations.constraint_names().is_empty();
+            // M q̈ + Aᵀλ = f is printed as d/dt ∂L/∂q̇ − ∂L/∂q = Q − Σ λ_i A_ij.
+            let multipliers: Vec<cas::Expr> = (1..=equations.constraint_names().len())
+                .map(|i| cas::Expr::symbol(&format!("lambda{i}")))
+                .collect();
             for (j, (lhs, q)) in equations
                 .lagrange_lhs()
                 .iter()
                 .zip(equations.generalized_forces())
                 .enumerate()
             {
-                let mut rhs = to_unicode(*q);
-                if lambdas {
-                    for (i, row) in equations.constraint_matrix().iter().enumerate() {
-                        if let Some(a) = row.get(j).filter(|a| !a.is_zero()) {
-                            rhs.push_str(&format!(" − λ{} ({})", i + 1, to_unicode(*a)));
-                        }
-                    }
-                }
-                println!("{} = {}", to_unicode(*lhs), rhs);
+                let reactions = equations
+                    .constraint_matrix()
+                    .iter()
+                    .zip(&multipliers)
+                    .filter_map(|(row, lambda)| row.get(j).map(|a| *lambda * *a))
+                    .sum::<cas::Expr>();
+                println!("{} = {}", to_unicode(*lhs), to_unicode(*q - reactions));
             }
-            for (i, (name, (row, b))) in equations
-                .constraint_names()
-                .iter()
-                .zip(
-                    equations
-                        .constraint_matrix()
-                        .iter()
-                        .zip(equations.constraint_rhs()),
-                )
-                .enumerate()
-            {
-                let terms: Vec<String> = row
+            for (name, ((row, b), lambda)) in equations.constraint_names().iter().zip(
+                equations
+                    .constraint_matrix()
+                    .iter()
+                    .zip(equations.constraint_rhs())
+                    .zip(&multipliers),
+            ) {
+                let lhs = row
                     .iter()
                     .zip(equations.coordinates())
-                    .filter(|(a, _)| !a.is_zero())
-                    .map(|(a, q)| format!("({}) {}̈", to_unicode(*a), q))
-                    .collect();
+                    .map(|(a, q)| *a * cas::Expr::rate(q, 2))
+                    .sum::<cas::Expr>();
                 println!(
-                    "constraint `{name}` (λ{}): {} = {}",
-                    i + 1,
-                    terms.join(" + "),
+                    "constraint `{name}` ({}): {} = {}",
+                    to_unicode(*lambda),
+                    to_unicode(lhs),
                     to_unicode(*b)
                 );
+            }
+            if let Some(accelerations) = equations.accelerations() {
+                println!();
+                println!("solved for the accelerations:");
+                for (q, a) in equations.coordinates().iter().zip(accelerations) {
+                    println!(
+                        "  {} = {}",
+                        to_unicode(cas::Expr::rate(q, 2)),
+                        to_unicode(*a)
+                    );
+                }
             }
             if !equations.first_integrals().is_empty() {
                 println!();
             }
             for f in equations.first_integrals() {
+                let condition = report::solution::conditions_text(f)
+                    .map(|c| format!(" while {c}"))
+                    .unwrap_or_default();
                 match &f.coordinate {
-                    Some(q) => println!("conserved: p_{q} = {}", to_unicode(f.value)),
-                    None => println!("conserved ({}): h = {}", f.kind, to_unicode(f.value)),
+                    Some(q) => println!("conserved{condition}: p_{q} = {}", to_unicode(f.value)),
+                    None => println!(
+                        "conserved ({}){condition}: h = {}",
+                        f.kind,
+                        to_unicode(f.value)
+                    ),
                 }
             }
         }

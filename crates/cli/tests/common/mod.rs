@@ -1,0 +1,32 @@
+//! Running the real `lagrange` binary from the integration tests, from the repository root
+//! (where `examples/` is).
+
+// Each test file is its own crate and uses only some of these.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Runs `lagrange ARGS` in the repository root.
+pub fn lagrange(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lagrange"))
+        .args(args)
+        .current_dir(root())
+        .output()
+        .expect("the lagrange binary runs")
+}
+
+/// Its standard output.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Its standard error.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}

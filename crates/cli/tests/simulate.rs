@@ -1,0 +1,193 @@
+//! `lagrange simulate`, run for real: the CSV's header and rows, `--set`, `--stop-when`,
+//! plots, and the messages and exit codes of bad input and of a run that blows up.
+
+use std::path::PathBuf;
+
+mod common;
+use common::lagrange;
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+fn rows(csv: &str) -> Vec<Vec<f64>> {
+    csv.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lagrange-simulate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn writes_the_csv_with_header_rows_and_summary() {
+    let o = lagrange(&[
+        "simulate",
+        "examples/double-pendulum.lag",
+        "--t-end",
+        "2",
+        "--output-step",
+        "0.5",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let out = text(&o.stdout);
+    assert_eq!(
+        out.lines().next(),
+        Some("t,theta1,theta2,theta1_d,theta2_d,energy_error,constraint_drift")
+    );
+    let data = rows(&out);
+    let times: Vec<f64> = data.iter().map(|r| r[0]).collect();
+    assert_eq!(times, [0.0, 0.5, 1.0, 1.5, 2.0]);
+    // The model's initial values.
+    assert_eq!(&data[0][1..5], &[1.0, 0.0, 0.0, 0.5]);
+    assert!(data.iter().all(|r| r[5].abs() < 1e-7 && r[6] == 0.0));
+    let summary = text(&o.stderr);
+    assert!(
+        summary.starts_with("dopri5: t = 2.000000 of 2, ") && summary.contains(" rejected), "),
+        "{summary}"
+    );
+    assert!(summary.contains("evaluations") && summary.contains("final energy error"));
+}
+
+#[test]
+fn set_overrides_parameters_and_initial_values() {
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--t-end",
+        "1",
+        "--output-step",
+        "1",
+        "--set",
+        "theta=0.01",
+        "--set",
+        "g=4*pi**2",
+        "--set",
+        "theta_d=0",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let data = rows(&text(&o.stdout));
+    assert_eq!(data[0][1], 0.01);
+    // l = 1, g = 4π²: the small-amplitude period is 1 s, so θ is back near 0.01.
+    assert!((data[1][1] - 0.01).abs() < 1e-5, "{:?}", data[1]);
+
+    let o = lagrange(&["simulate", "examples/simple-pendulum.lag", "--set", "k=1"]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = text(&o.stderr);
+    assert!(
+        err.contains("`k` is not a parameter") && err.contains("theta_d"),
+        "{err}"
+    );
+}
+
+#[test]
+fn stop_when_ends_the_run_at_the_crossing() {
+    // From rest at θ = 0.5 the pendulum first passes θ = 0 after a quarter period.
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--stop-when",
+        "theta",
+        "--rtol",
+        "1e-10",
+    ]);
+    assert!(o.status.success(), "{}", text(&o.stderr));
+    let data = rows(&text(&o.stdout));
+    let last = data.last().unwrap();
+    assert!(last[1].abs() < 1e-8, "{last:?}");
+    // Quarter period K(sin ¼)/√g of a 0.5 rad pendulum with g = 9.81, l = 1: 0.509467 s
+    // (complete elliptic integral K by its series to k⁸).
+    assert!((last[0] - 0.509_467).abs() < 2e-6, "{last:?}");
+    assert!(text(&o.stderr).contains("stopped at t = "));
+}
+
+#[test]
+fn plots_svg_and_png_and_refuses_other_names() {
+    for name in ["run.svg", "run.png"] {
+        let path = temp(name);
+        let csv = temp("run.csv");
+        let o = lagrange(&[
+            "simulate",
+            "examples/cartesian-pendulum.lag",
+            "--t-end",
+            "1",
+            "--out",
+            csv.to_str().unwrap(),
+            "--plot",
+            path.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", text(&o.stderr));
+        let bytes = std::fs::read(&path).unwrap();
+        if name.ends_with("svg") {
+            assert!(text(&bytes).contains("<svg") && text(&bytes).contains("constraint drift"));
+        } else {
+            assert_eq!(&bytes[1..4], b"PNG");
+        }
+    }
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--plot",
+        "run.pdf",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o.stderr).contains(".svg or .png"));
+}
+
+#[test]
+fn a_blow_up_stops_with_its_time_and_keeps_the_rows() {
+    // The mass matrix 4 m x² vanishes at x = 0, which the motion reaches at t = 1/2.
+    let model = temp("singular.lag");
+    std::fs::write(
+        &model,
+        "coordinates x\nparameters m = 1\nframe N\npoint P = x^2*N.x\nparticle P mass m\n\
+         initial x = 1, x' = -1\nsimulate to 2\n",
+    )
+    .unwrap();
+    let o = lagrange(&["simulate", model.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(3));
+    let err = text(&o.stderr);
+    assert!(
+        err.contains("error: the simulation stopped at t = 0.5"),
+        "{err}"
+    );
+    assert!(err.contains("rows computed up to then were written"));
+    let data = rows(&text(&o.stdout));
+    assert!(data.len() > 10);
+    assert!(data.iter().all(|r| r[0] < 0.5 + 1e-6));
+}
+
+#[test]
+fn missing_values_and_bad_settings_are_clear_errors() {
+    let model = temp("no-value.lag");
+    std::fs::write(
+        &model,
+        "coordinates x\nparameters m, k = 1\nframe N\npoint P = x*N.x\nparticle P mass m\n\
+         spring k from origin to P\ninitial x = 1\n",
+    )
+    .unwrap();
+    let o = lagrange(&["simulate", model.to_str().unwrap(), "--t-end", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        text(&o.stderr).contains("no value for `m`"),
+        "{}",
+        text(&o.stderr)
+    );
+    let o = lagrange(&["simulate", model.to_str().unwrap()]);
+    assert!(text(&o.stderr).contains("no end time"));
+    let o = lagrange(&[
+        "simulate",
+        "examples/cartesian-pendulum.lag",
+        "--method",
+        "gauss",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("does not handle constraints"));
+    let o = lagrange(&["simulate", "examples/simple-pendulum.lag", "--rtol=-1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(text(&o.stderr).contains("invalid setting `rtol`"));
+}

@@ -1,0 +1,225 @@
+//! `lagrange solve`: the report in each format, `--out`, and the committed solutions of the
+//! seed's exercises (`examples/seed/*.md`), which must match what the code writes today.
+//! Regenerate them with `LAGRANGE_BLESS=1 cargo test -p lagrange-cli --test solve`.
+
+use std::path::{Path, PathBuf};
+
+mod common;
+use common::{lagrange, root, stdout};
+
+#[test]
+fn the_text_report_follows_the_course() {
+    let o = lagrange(&["solve", "examples/seed/7.1-cart-pendulum.lag"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    let order = [
+        "The system",
+        "Kinematics",
+        "Lagrangian function",
+        "Lagrange equations (II type)",
+        "First integrals",
+    ];
+    let positions: Vec<usize> = order
+        .iter()
+        .map(|t| {
+            text.find(&format!("{t}\n"))
+                .unwrap_or_else(|| panic!("no `{t}` in\n{text}"))
+        })
+        .collect();
+    assert!(positions.windows(2).all(|w| w[0] < w[1]), "{text}");
+    assert!(text.contains("  ∂L/∂ẋ = (m_A + m_B) ẋ + m_B ℓ θ̇ cos θ"));
+    assert!(text.contains("  (m_A + m_B) ẍ + m_B ℓ θ̈ cos θ − m_B ℓ θ̇² sin θ + k x = F"));
+    assert!(text.contains("  m_B ℓ (ℓ θ̈ + ẍ cos θ + g sin θ) = C"));
+    assert!(text.contains(
+        "Inputs (given functions of time, held at these values unless set): F = 0, C = 0."
+    ));
+    // The reactions the model asks for, by both methods, after the equations of motion.
+    let reactions = text
+        .find("Constraint reactions\n")
+        .expect("a reactions section");
+    assert!(reactions > positions[4]);
+    assert!(text.contains("hinge_A — hinge at A, on B:"));
+    assert_eq!(
+        text.matches("Methods: lagrange_1, newton_euler — agree exactly")
+            .count(),
+        2,
+        "{text}"
+    );
+    assert!(
+        text.lines().all(|l| l.chars().count() <= 80),
+        "a line is wider than 80 columns:\n{text}"
+    );
+}
+
+#[test]
+fn markdown_latex_and_json_carry_the_equations() {
+    let md = stdout(&lagrange(&[
+        "solve",
+        "examples/seed/7.1-cart-pendulum.lag",
+        "--format",
+        "md",
+    ]));
+    assert!(md.starts_with("# Exercise 7.1 of the seed"));
+    assert!(md.contains("## Lagrange equations (II type)"));
+    assert_eq!(
+        md.matches("$$\n\\begin{aligned}").count(),
+        md.matches("\\end{aligned}\n$$").count()
+    );
+    let tex = stdout(&lagrange(&[
+        "solve",
+        "examples/seed/7.1-cart-pendulum.lag",
+        "--format",
+        "tex",
+    ]));
+    assert!(tex.starts_with("\\documentclass"));
+    assert!(tex.trim_end().ends_with("\\end{document}"));
+    assert_eq!(
+        tex.matches("\\begin{").count(),
+        tex.matches("\\end{").count()
+    );
+    let json = stdout(&lagrange(&[
+        "solve",
+        "examples/seed/7.1-cart-pendulum.lag",
+        "--format",
+        "json",
+    ]));
+    let value: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+    assert_eq!(value["coordinates"], serde_json::json!(["x", "theta"]));
+    assert_eq!(value["report"]["sections"][1]["title"], "Kinematics");
+}
+
+#[test]
+fn out_writes_the_report_into_a_directory() {
+    let dir = std::env::temp_dir().join(format!("lagrange-solve-{}", std::process::id()));
+    let o = lagrange(&[
+        "solve",
+        "examples/seed/7.4-inverted-pendulum.lag",
+        "--format",
+        "md",
+        "--out",
+        dir.to_str().expect("utf-8 temp dir"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let written = std::fs::read_to_string(dir.join("7.4-inverted-pendulum.md")).expect("written");
+    assert!(written.contains("## Kinematics"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_singular_model_is_an_error_with_a_non_zero_exit() {
+    let path = std::env::temp_dir().join(format!("lagrange-singular-{}.lag", std::process::id()));
+    std::fs::write(
+        &path,
+        "coordinates x, y\nparameters m = 1\nframe N\npoint P = (x + y)*N.x\nparticle P mass m\n",
+    )
+    .expect("written");
+    let o = lagrange(&["solve", path.to_str().expect("utf-8")]);
+    let _ = std::fs::remove_file(&path);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("mass matrix is singular"), "{err}");
+}
+
+#[test]
+fn the_committed_seed_solutions_are_up_to_date() {
+    let bless = std::env::var_os("LAGRANGE_BLESS").is_some();
+    let seed = root().join("examples/seed");
+    let mut models: Vec<PathBuf> = std::fs::read_dir(&seed)
+        .expect("examples/seed")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().and_then(|e| e.to_str()) == Some("lag"))
+        .collect();
+    models.sort();
+    assert_eq!(models.len(), 4);
+    let mut stale = Vec::new();
+    let scratch = std::env::temp_dir().join(format!("lagrange-seed-{}", std::process::id()));
+    for model in models {
+        let relative = Path::new("examples/seed").join(model.file_name().expect("a file name"));
+        let out = if bless { seed.clone() } else { scratch.clone() };
+        let o = lagrange(&[
+            "solve",
+            relative.to_str().expect("utf-8"),
+            "--format",
+            "md",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let name = model.with_extension("md");
+        let name = name.file_name().expect("a file name");
+        let written = std::fs::read(out.join(name)).expect("the solution is written");
+        // Every seed model simulates, so its plot is written beside the solution.
+        let stem = model.file_stem().and_then(|s| s.to_str()).expect("a stem");
+        assert!(
+            out.join(format!("{stem}-motion.svg")).exists(),
+            "{stem}: no plot"
+        );
+        if !bless && std::fs::read(seed.join(name)).ok() != Some(written) {
+            stale.push(seed.join(name).display().to_string());
+        }
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
+    assert!(
+        stale.is_empty(),
+        "stale solutions (regenerate with LAGRANGE_BLESS=1 cargo test -p lagrange-cli --test solve): {stale:?}"
+    );
+}
+
+#[test]
+fn the_inverted_pendulum_is_unstable_upright_and_controllable() {
+    let text = stdout(&lagrange(&[
+        "solve",
+        "examples/seed/7.4-inverted-pendulum.lag",
+    ]));
+    let equilibria = text
+        .find("Equilibria and their stability\n")
+        .expect("an equilibria section");
+    let linearized = text
+        .find("Linearized dynamics\n")
+        .expect("a linearized section");
+    assert!(equilibria < linearized);
+    assert!(text.contains("  0  any  0.0000      unstable"), "{text}");
+    assert!(text.contains("  1  any  π ≈ 3.1416  stable"), "{text}");
+    // Upright: λ = ±√(K/M) of the reduced pendulum, 5.2942 for the example's values.
+    assert!(text.contains("Eigenvalues of the state matrix A: -5.2942, 0.0000, 0.0000, 5.2942."));
+    assert!(text.contains("of rank 4 of 4: controllable from the inputs"));
+}
+
+#[test]
+fn set_overrides_a_value_for_one_run_in_every_command() {
+    // F = 3 moves the cart's equilibrium to x = F/k = 0.1.
+    let o = lagrange(&[
+        "solve",
+        "examples/seed/7.1-cart-pendulum.lag",
+        "--set",
+        "F=3",
+    ]);
+    assert!(o.status.success());
+    assert!(stdout(&o).contains("  0  F/k ≈ 0.1000"), "{}", stdout(&o));
+    // From θ₀ = 0.5 at rest the particle leaves the sphere where cos θ = ⅔ cos 0.5.
+    let o = lagrange(&[
+        "reactions",
+        "examples/particle-on-sphere.lag",
+        "--set",
+        "theta=0.5",
+    ]);
+    assert!(o.status.success());
+    let want = format!("(cos = {:.6}", 2.0 / 3.0 * 0.5f64.cos());
+    assert!(stdout(&o).contains(&want), "{}", stdout(&o));
+    // An unknown name is an error that lists what can be set, with exit code 2.
+    for command in ["eom", "solve", "reactions"] {
+        let o = lagrange(&[
+            command,
+            "examples/seed/7.1-cart-pendulum.lag",
+            "--set",
+            "nope=1",
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{command}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("`nope` is not a parameter"),
+            "{command}: {err}"
+        );
+    }
+}

@@ -1,0 +1,259 @@
+//! Plots of a simulation run, with `plotters`: time histories of the coordinates, phase
+//! portraits (`q` against `q̇`), and the energy error (with the constraint drift when there are
+//! constraints), in one figure. SVG or PNG, chosen by the file's extension. The text uses the
+//! bundled DejaVu Sans (assets/fonts, with its licence), so no system font is needed.
+
+use std::path::Path;
+use std::sync::Once;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// Why a plot could not be written.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PlotError {
+    /// The extension is neither `.svg` nor `.png`.
+    #[error("cannot plot to `{path}`: the file name must end in .svg or .png")]
+    Format {
+        /// The path.
+        path: String,
+    },
+    /// The columns are not those of a run (`t`, coordinates, rates, energy error, drift).
+    #[error("the run has no coordinate columns to plot")]
+    NoData,
+    /// Drawing or writing failed.
+    #[error("cannot draw `{path}`: {message}")]
+    Drawing {
+        /// The path.
+        path: String,
+        /// What the backend said.
+        message: String,
+    },
+}
+
+static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
+pub(crate) const FAMILY: &str = "sans-serif";
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(23, 190, 207),
+];
+
+pub(crate) fn register_font() {
+    static REGISTER: Once = Once::new();
+    REGISTER.call_once(|| {
+        // The bundled font is valid TrueType; should registration fail anyway, text falls back
+        // to plotters' behaviour (no text) rather than the plot failing.
+        let _ = plotters::style::register_font(FAMILY, FontStyle::Normal, FONT);
+    });
+}
+
+/// Draws the run: `columns` as written by `lagrange simulate` (`t`, the n coordinates, the n
+/// rates `q_d`, `energy_error`, `constraint_drift`), `rows` the data.
+///
+/// # Errors
+/// A [`PlotError`] for a wrong extension, no data, or a drawing failure.
+pub fn plot_run(
+    path: &Path,
+    title: &str,
+    columns: &[String],
+    rows: &[Vec<f64>],
+) -> Result<(), PlotError> {
+    register_font();
+    let name = path.display().to_string();
+    let drawing = |e: &dyn std::fmt::Display| PlotError::Drawing {
+        path: name.clone(),
+        message: e.to_string(),
+    };
+    if columns.len() < 5 || rows.is_empty() {
+        return Err(PlotError::NoData);
+    }
+    let n = (columns.len() - 3) / 2;
+    let size = (1200, 900);
+    match path.extension().and_then(|e| e.to_str()) {
+        Some(ext) if ext.eq_ignore_ascii_case("svg") => {
+            let root = SVGBackend::new(path, size).into_drawing_area();
+            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            root.present().map_err(|e| drawing(&e))
+        }
+        Some(ext) if ext.eq_ignore_ascii_case("png") => {
+            let root = BitMapBackend::new(path, size).into_drawing_area();
+            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            root.present().map_err(|e| drawing(&e))
+        }
+        _ => Err(PlotError::Format { path: name }),
+    }
+}
+
+type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    title: &str,
+    columns: &[String],
+    rows: &[Vec<f64>],
+    n: usize,
+) -> DrawResult<DB> {
+    root.fill(&WHITE)?;
+    let root = root.titled(title, (FAMILY, 26))?;
+    let (top, bottom) = root.split_vertically(480);
+    let (phase, energy_panel) = bottom.split_horizontally(600);
+    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    let series = |k: usize| -> Vec<(f64, f64)> {
+        rows.iter()
+            .map(|r| (r[0], r[k]))
+            .filter(|(_, y)| y.is_finite())
+            .collect()
+    };
+
+    // Time histories of the coordinates.
+    let coordinates: Vec<Vec<(f64, f64)>> = (1..=n).map(series).collect();
+    let (lo, hi) = bounds(coordinates.iter().flatten().map(|p| p.1));
+    let t_range = bounds(t.iter().copied());
+    let mut chart = ChartBuilder::on(&top)
+        .margin(12)
+        .caption("coordinates", (FAMILY, 20))
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    chart
+        .configure_mesh()
+        .x_desc("t")
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    for (k, points) in coordinates.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(1),
+            ))?
+            .label(columns[k + 1].as_str())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .label_font((FAMILY, 15))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()?;
+
+    // Phase portraits q against q̇.
+    let portraits: Vec<Vec<(f64, f64)>> = (1..=n)
+        .map(|k| {
+            rows.iter()
+                .map(|r| (r[k], r[n + k]))
+                .filter(|(a, b)| a.is_finite() && b.is_finite())
+                .collect()
+        })
+        .collect();
+    let x = bounds(portraits.iter().flatten().map(|p| p.0));
+    let y = bounds(portraits.iter().flatten().map(|p| p.1));
+    let mut chart = ChartBuilder::on(&phase)
+        .margin(12)
+        .caption("phase portraits (q, dq/dt)", (FAMILY, 20))
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
+    chart
+        .configure_mesh()
+        .x_desc("q")
+        .y_desc("dq/dt")
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    for (k, points) in portraits.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart.draw_series(LineSeries::new(
+            points.iter().copied(),
+            color.stroke_width(1),
+        ))?;
+    }
+
+    // Energy error, and drift when constrained.
+    let energy = series(2 * n + 1);
+    let drift = series(2 * n + 2);
+    let constrained = drift.iter().any(|p| p.1 != 0.0);
+    let values = energy
+        .iter()
+        .map(|p| p.1)
+        .chain(drift.iter().filter(|_| constrained).map(|p| p.1));
+    let (lo, hi) = bounds(values);
+    let mut chart = ChartBuilder::on(&energy_panel)
+        .margin(12)
+        .caption(
+            if constrained {
+                "energy error and constraint drift"
+            } else {
+                "relative energy error"
+            },
+            (FAMILY, 20),
+        )
+        .x_label_area_size(40)
+        .y_label_area_size(90)
+        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    chart
+        .configure_mesh()
+        .x_desc("t")
+        .y_label_formatter(&|v| {
+            // Ticks that are zero up to rounding print as 0, not 2.6e-26.
+            if v.abs() < 1e-9 * (hi - lo) {
+                "0".to_owned()
+            } else {
+                format!("{v:.1e}")
+            }
+        })
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    chart
+        .draw_series(LineSeries::new(
+            energy.iter().copied(),
+            PALETTE[0].stroke_width(1),
+        ))?
+        .label("energy error")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PALETTE[0].stroke_width(1)));
+    if constrained {
+        chart
+            .draw_series(LineSeries::new(
+                drift.iter().copied(),
+                PALETTE[1].stroke_width(1),
+            ))?
+            .label("constraint drift")
+            .legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], PALETTE[1].stroke_width(1))
+            });
+        chart
+            .configure_series_labels()
+            .label_font((FAMILY, 15))
+            .background_style(WHITE.mix(0.85))
+            .draw()?;
+    }
+    Ok(())
+}
+
+/// The range of the finite values, widened by 5% (and to a unit range around a constant) so
+/// lines do not run along the frame.
+pub(crate) fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let span = hi - lo;
+    if span <= 1e-300 + 1e-12 * lo.abs().max(hi.abs()) {
+        let pad = if lo == 0.0 { 1.0 } else { 0.5 * lo.abs() };
+        return (lo - pad, hi + pad);
+    }
+    (lo - 0.05 * span, hi + 0.05 * span)
+}

@@ -1,0 +1,309 @@
+//! The "Equilibria and their stability" and "Linearized dynamics" sections of a solution: the
+//! rest equations, every equilibrium (exact where the equations allow) with the criterion that
+//! decided its stability, then `M0 δq̈ + C0 δq̇ + K0 δq = B0 δu` about each one with its natural
+//! frequencies and modes.
+
+use cas::Expr;
+use mechanics::equilibria::{EquilibriumSet, RestEquations};
+use mechanics::linearize::Linearized;
+
+use crate::document::{Block, Cell, Equation, Math, Section};
+use crate::equilibria::{condition_text, stability_word, LinearizedResult};
+
+/// Both sections.
+#[must_use]
+pub fn equilibria_sections(
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+) -> Vec<Section> {
+    vec![
+        equilibria_section(rest, set, lin),
+        linearized_section(rest, lin),
+    ]
+}
+
+fn coordinate(q: &str) -> Math {
+    Math::expr(Expr::coordinate(q))
+}
+
+fn equilibria_section(
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+) -> Section {
+    let mut s = Section::new("Equilibria and their stability", 2);
+    s.paragraph(format!(
+        "Rest states: q̇ = 0, q̈ = 0 with the inputs held at their values, so f(q, 0) = 0 — {}.",
+        if set.method.complete() {
+            match set.method {
+                mechanics::equilibria::Method::Exact => {
+                    "solved exactly; the list is complete".to_string()
+                }
+                m => format!("solved by {}; the list is complete", m.name()),
+            }
+        } else {
+            format!(
+                "solved numerically ({}); completeness is not guaranteed",
+                set.method.name()
+            )
+        }
+    ));
+    s.equations(
+        rest.coordinates
+            .iter()
+            .zip(&rest.residuals)
+            .map(|(q, r)| {
+                Equation::new(
+                    Math::label(
+                        format!("0 (eq. of {})", coordinate(q).unicode),
+                        "0".to_string(),
+                    ),
+                    Math::expr(*r),
+                )
+            })
+            .collect(),
+    );
+    if set.equilibria.is_empty() {
+        s.paragraph("No equilibrium for these parameter values.");
+        return s;
+    }
+    let mut header = vec!["#".to_string()];
+    header.extend(rest.coordinates.iter().map(|q| coordinate(q).unicode));
+    header.push("stability".to_string());
+    let rows: Vec<Vec<Cell>> = set
+        .equilibria
+        .iter()
+        .zip(lin)
+        .enumerate()
+        .map(|(i, (e, l))| {
+            let mut row = vec![Cell::Text(i.to_string())];
+            for (k, v) in e.values.iter().enumerate() {
+                let free = rest.free.get(k).copied().unwrap_or(false);
+                let exact = e.exact.as_ref().and_then(|x| x.get(k)).copied();
+                row.push(match (free, exact) {
+                    (true, _) => Cell::Text("any".into()),
+                    (false, Some(x)) if x.as_number().is_none() => {
+                        let m = Math::expr(x);
+                        Cell::Math(Math::label(
+                            format!("{} ≈ {v:.4}", m.unicode),
+                            format!(r"{} \approx {v:.4}", m.latex),
+                        ))
+                    }
+                    _ => Cell::Math(Math::label(format!("{v:.4}"), format!("{v:.4}"))),
+                });
+            }
+            match l {
+                // The criterion and its reasoning follow the table.
+                Ok(l) => row.push(Cell::Text(stability_word(l.stable).into())),
+                Err(_) => row.push(Cell::Text("not decided".into())),
+            }
+            row
+        })
+        .collect();
+    s.blocks.push(Block::Table { header, rows });
+    for (i, (e, l)) in set.equilibria.iter().zip(lin).enumerate() {
+        let mut sentence = String::new();
+        match l {
+            Ok(l) => sentence.push_str(&format!("Equilibrium {i}: {}.", l.criterion)),
+            Err(err) => {
+                sentence.push_str(&format!("Equilibrium {i}: stability not decided: {err}."))
+            }
+        }
+        let conditions: Vec<String> = e
+            .conditions
+            .iter()
+            .map(|c| {
+                condition_text(c, cas::print::to_unicode)
+                    .replace(" != ", " ≠ ")
+                    .replace(" <= ", " ≤ ")
+                    .replace(" >= ", " ≥ ")
+                    .replace(" == ", " = ")
+            })
+            .collect();
+        if !conditions.is_empty() {
+            sentence.push_str(&format!(
+                " It exists only when {}.",
+                conditions.join(" and ")
+            ));
+        }
+        if !sentence.is_empty() {
+            s.paragraph(sentence.trim_start().to_string());
+        }
+    }
+    s
+}
+
+/// A numeric matrix in both notations.
+fn matrix(m: &[Vec<f64>]) -> Math {
+    let cell = |v: f64| {
+        let v = if v.abs() < 1e-12 { 0.0 } else { v };
+        // Four decimals, without trailing zeros: `0.5`, `30`, `-4.905`.
+        let text = format!("{v:.4}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        if text == "-0" {
+            "0".to_string()
+        } else {
+            text.to_string()
+        }
+    };
+    let unicode = m
+        .iter()
+        .map(|r| {
+            format!(
+                "[{}]",
+                r.iter().map(|v| cell(*v)).collect::<Vec<_>>().join(", ")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(" ");
+    let latex = format!(
+        r"\begin{{pmatrix}} {} \end{{pmatrix}}",
+        m.iter()
+            .map(|r| r.iter().map(|v| cell(*v)).collect::<Vec<_>>().join(" & "))
+            .collect::<Vec<_>>()
+            .join(r" \\ ")
+    );
+    Math::label(unicode, latex)
+}
+
+/// A symbolic matrix in both notations.
+fn exact_matrix(m: &[Vec<Expr>]) -> Math {
+    let unicode = m
+        .iter()
+        .map(|r| {
+            format!(
+                "[{}]",
+                r.iter()
+                    .map(|e| Math::expr(*e).unicode)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(" ");
+    let latex = format!(
+        r"\begin{{pmatrix}} {} \end{{pmatrix}}",
+        m.iter()
+            .map(|r| r
+                .iter()
+                .map(|e| Math::expr(*e).latex)
+                .collect::<Vec<_>>()
+                .join(" & "))
+            .collect::<Vec<_>>()
+            .join(r" \\ ")
+    );
+    Math::label(unicode, latex)
+}
+
+fn linearized_section(rest: &RestEquations, lin: &[LinearizedResult]) -> Section {
+    let mut s = Section::new("Linearized dynamics", 2);
+    s.paragraph(
+        "About each equilibrium q0: M0 δq̈ + C0 δq̇ + K0 δq = B0 δu, with M0 = M(q0), \
+         C0 = −∂f/∂q̇ and K0 = −∂f/∂q at rest; natural frequencies from K0 x = ω² M0 x.",
+    );
+    for (i, l) in lin.iter().enumerate() {
+        let Ok(l) = l else { continue };
+        s.paragraph(format!(
+            "About equilibrium {i} ({}):",
+            stability_word(l.stable)
+        ));
+        s.equations(linear_lines(l));
+        s.paragraph(frequencies_sentence(rest, l));
+    }
+    s
+}
+
+fn linear_lines(l: &Linearized) -> Vec<Equation> {
+    let names = [("M0", "M_0"), ("C0", "C_0"), ("K0", "K_0"), ("B0", "B_0")];
+    let numeric = [&l.m0, &l.c0, &l.k0, &l.b0];
+    let has_inputs = l.b0.iter().any(|row| !row.is_empty());
+    names
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != 1 || l.c0.iter().flatten().any(|v| v.abs() > 1e-12))
+        .filter(|(k, _)| *k != 3 || has_inputs)
+        .map(|(k, (u, t))| {
+            let numbers = matrix(numeric[k]);
+            let rhs = match &l.exact {
+                Some(exact) => {
+                    let symbolic = exact_matrix(&exact[k]);
+                    // In a terminal a long symbolic matrix does not fit: the numbers only.
+                    let both =
+                        symbolic.unicode.chars().count() + 3 + numbers.unicode.chars().count();
+                    let unicode = if both > 72 {
+                        numbers.unicode.clone()
+                    } else {
+                        format!("{} = {}", symbolic.unicode, numbers.unicode)
+                    };
+                    Math::label(unicode, format!("{} = {}", symbolic.latex, numbers.latex))
+                }
+                None => numbers,
+            };
+            Equation::new(Math::label(*u, *t), rhs)
+        })
+        .collect()
+}
+
+fn frequencies_sentence(rest: &RestEquations, l: &Linearized) -> String {
+    let Some(omega_squared) = &l.omega_squared else {
+        return "M0 is not positive definite here: no natural frequencies.".to_string();
+    };
+    let parts: Vec<String> = omega_squared
+        .iter()
+        .zip(&l.modes)
+        .map(|(w2, mode)| {
+            let shape: Vec<String> = rest
+                .coordinates
+                .iter()
+                .zip(mode)
+                .map(|(q, x)| format!("{} {x:+.4}", coordinate(q).unicode))
+                .collect();
+            if *w2 > 0.0 {
+                format!("ω = {:.4} rad/s (mode {})", w2.sqrt(), shape.join(", "))
+            } else {
+                format!(
+                    "ω² = {w2:.4} ≤ 0, a divergent or neutral mode ({})",
+                    shape.join(", ")
+                )
+            }
+        })
+        .collect();
+    let mut sentence = format!("Natural frequencies: {}.", parts.join("; "));
+    let eigenvalues: Vec<String> = l
+        .eigenvalues
+        .iter()
+        .map(|(re, im)| {
+            let re = if re.abs() < 1e-9 { 0.0 } else { *re };
+            if im.abs() < 1e-9 {
+                format!("{re:.4}")
+            } else {
+                format!(
+                    "{re:.4} {} {:.4}i",
+                    if *im < 0.0 { "−" } else { "+" },
+                    im.abs()
+                )
+            }
+        })
+        .collect();
+    sentence.push_str(&format!(
+        " Eigenvalues of the state matrix A: {}.",
+        eigenvalues.join(", ")
+    ));
+    if let Some(rank) = l.controllability_rank {
+        let n = l.a.len();
+        sentence.push_str(&format!(
+            " Controllability matrix [B, AB, …] of rank {rank} of {n}: {}.",
+            if rank == n {
+                "controllable from the inputs"
+            } else {
+                "not controllable from the inputs alone"
+            }
+        ));
+    }
+    if l.damping_ratios.iter().any(|z| z.abs() > 1e-9) {
+        let z: Vec<String> = l.damping_ratios.iter().map(|z| format!("{z:.4}")).collect();
+        sentence.push_str(&format!(" Damping ratios: {}.", z.join(", ")));
+    }
+    sentence
+}

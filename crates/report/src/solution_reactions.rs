@@ -1,0 +1,143 @@
+//! The "Constraint reactions" section of a solution: each reaction the model asks for, by
+//! Lagrange's equations of the first kind and by Newton–Euler, whether the two agree, and
+//! where a one-sided constraint (a contact, a rope) would be lost.
+
+use mechanics::{Reaction, ReleaseKind, Unilateral};
+
+use crate::document::{Equation, Math, Section};
+use crate::UnilateralReport;
+
+/// The section, from the reactions and their unilateral analyses (same order).
+#[must_use]
+pub fn reactions_section(
+    reactions: &[Reaction],
+    unilateral: &[Option<UnilateralReport>],
+) -> Section {
+    let mut s = Section::new("Constraint reactions", 2);
+    s.paragraph(
+        "Each constraint is released (a redundant coordinate per constrained direction) and its \
+         reaction found twice: as the Lagrange multiplier of the released system (Lagrange I) \
+         and from the momentum and angular-momentum equations of the bodies it acts on \
+         (Newton–Euler), with the accelerations eliminated by the pure equations of motion. \
+         Components are in the inertial frame; the force is the one acting on the bodies named.",
+    );
+    for (i, r) in reactions.iter().enumerate() {
+        let kind = r.kind.map_or("constraint", ReleaseKind::word);
+        let title = match &r.point {
+            Some((point, _)) => format!(
+                "{} — {kind} at {point}, on {}",
+                r.name,
+                r.members.join(", ")
+            ),
+            None => format!("{} — {kind}, generalized reaction", r.name),
+        };
+        s.paragraph(format!("{title}:"));
+        let mut lines = Vec::new();
+        if let Some(force) = &r.force {
+            lines.push(Equation::new(
+                Math::label(
+                    format!("R_{}", r.name),
+                    format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
+                ),
+                Math::vector(force),
+            ));
+        }
+        if let Some(couple) = &r.couple {
+            lines.push(Equation::new(
+                Math::label(
+                    format!("C_{}", r.name),
+                    format!(r"\vec{{C}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
+                ),
+                Math::vector(couple),
+            ));
+        }
+        let symbol = match r.kind {
+            Some(ReleaseKind::Rope) => "T",
+            _ => "N",
+        };
+        if let Some((value, _)) = &r.along {
+            lines.push(Equation::new(
+                Math::label(symbol, symbol),
+                Math::expr(*value),
+            ));
+        }
+        for (q, e) in &r.generalized {
+            let q_math = Math::expr(cas::Expr::coordinate(q));
+            lines.push(Equation::new(
+                Math::label(
+                    format!("Q^R_{}", q_math.unicode),
+                    format!("Q^R_{{{}}}", q_math.latex),
+                ),
+                Math::expr(*e),
+            ));
+        }
+        s.equations(lines);
+        if let Some(c) = &r.unbalanced_couple {
+            s.remark(format!(
+                "The motion also needs a couple about this point, {}, which a {kind} does not \
+                 transmit: loads the release cannot attribute to these bodies act on them (other \
+                 supports built into the coordinates, whose forces R then includes, or generalized \
+                 forces such as the seed's C), or the joint transmits a couple (ask for a clamp).",
+                Math::vector(c).unicode
+            ));
+        }
+        if r.along.is_some() {
+            let sense = if symbol == "T" {
+                "a rope pulls only: it goes slack where T < 0"
+            } else {
+                "a contact pushes only: it is lost where N < 0"
+            };
+            s.paragraph(format!("One-sided: {sense}."));
+            if let Some(u) = unilateral.get(i).and_then(Option::as_ref) {
+                if let Some(along) = u.along_motion {
+                    s.equations(vec![Equation::new(
+                        Math::label(
+                            format!("{symbol} (along the motion, h = h₀)"),
+                            format!(r"{symbol}\big|_{{h = h_0}}"),
+                        ),
+                        Math::expr(along),
+                    )]);
+                }
+                match &u.scan {
+                    Some(Unilateral::Lost {
+                        coordinate,
+                        value,
+                        rate,
+                    }) => {
+                        s.remark(format!(
+                            "From the initial state, {symbol} changes sign at {coordinate} = {value:.4} \
+                             (rate {rate:.4}): the constraint is lost there, and the model no longer \
+                             describes the motion beyond that point."
+                        ));
+                    }
+                    Some(Unilateral::LostAtStart) => {
+                        s.remark(format!(
+                            "{symbol} < 0 at the initial state: the constraint does not hold."
+                        ));
+                    }
+                    Some(Unilateral::Kept {
+                        coordinate,
+                        turning_point: Some(q),
+                    }) => {
+                        s.remark(format!(
+                            "From the initial state, {symbol} keeps its sign up to the turning point \
+                             {coordinate} = {q:.4}: the constraint holds for the whole motion."
+                        ));
+                    }
+                    _ => {}
+                }
+            }
+        }
+        let methods: Vec<&str> = r.methods.iter().map(|m| m.name()).collect();
+        s.paragraph(format!(
+            "Methods: {} — {}.",
+            methods.join(", "),
+            r.agreement.verdict()
+        ));
+    }
+    s
+}
+
+fn latex_name(name: &str) -> String {
+    name.replace('_', r"\_")
+}
