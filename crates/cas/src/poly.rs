@@ -85,7 +85,10 @@ fn push_atom(table: &mut AtomTable, info: AtomInfo, kind_bits: u32) -> AtomId {
 /// The atom whose expression is `expr`, made with `kind` (and the id's kind bits) the first
 /// time it is asked for.
 fn intern_atom(expr: Expr, kind: impl FnOnce() -> AtomKind, kind_bits: u32) -> AtomId {
-    debug_assert!(expr.as_number().is_none(), "a number is not an atom: {expr:?}");
+    debug_assert!(
+        expr.as_number().is_none(),
+        "a number is not an atom: {expr:?}"
+    );
     if let Some(&id) = read_table().by_expr.get(&expr) {
         return id;
     }
