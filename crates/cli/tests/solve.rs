@@ -52,6 +52,31 @@ fn the_text_report_follows_the_course() {
 }
 
 #[test]
+fn the_seed_equations_print_in_the_seed_notation() {
+    // 7.3: the gear ratio r = R1/R2 is a named constant; the seed writes (I1 + I2 r²) φ̈1.
+    let o = lagrange(&["solve", "examples/seed/7.3-gears-pendulum.lag"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    assert!(text.contains("  (I1 + I2 r²) φ̈1 = C − F R1\n"), "{text}");
+    assert!(text.contains("  φ̈1 = (C − F R1)/(I1 + I2 r²)\n"), "{text}");
+    // 7.2: Ĩ θ̈ + m g b sin θ = 0, with b = d cos² α and Ĩ = m b² + I_x (b/R)² + I_z cos² α
+    // (here with I_y ≠ I_z, so the spin-dependent term is there too).
+    let o = lagrange(&["solve", "examples/seed/7.2-rolling-cone.lag"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    assert!(text.contains("  U = m b g cos θ\n"), "{text}");
+    assert!(
+        text.contains("(m b² + I_y cos² α + I_x cos⁴ α/sin² α) θ̈"),
+        "{text}"
+    );
+    assert!(text.contains("+ m b g sin θ = 0\n"), "{text}");
+    assert!(
+        text.contains("  r_C = b cos θ x̂ + b sin θ ŷ − h ẑ\n"),
+        "{text}"
+    );
+}
+
+#[test]
 fn markdown_latex_and_json_carry_the_equations() {
     let md = stdout(&lagrange(&[
         "solve",

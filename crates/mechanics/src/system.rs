@@ -115,6 +115,7 @@ pub struct System {
     loads: Vec<Load>,
     constraints: Vec<Constraint>,
     points: Vec<(String, Vector)>,
+    constants: Vec<(String, Expr)>,
 }
 
 impl System {
@@ -139,6 +140,18 @@ impl System {
     /// Adds a parameter with its value, if known.
     pub fn add_parameter(&mut self, name: &str, value: Option<Expr>) {
         self.parameters.push((name.to_string(), value));
+    }
+
+    /// Records a named constant of the model with its value (already substituted in every
+    /// expression by the caller); reports print products containing the value with the name.
+    pub fn add_constant(&mut self, name: &str, value: Expr) {
+        self.constants.push((name.to_string(), value));
+    }
+
+    /// The named constants, with their values in the parameters.
+    #[must_use]
+    pub fn constants(&self) -> &[(String, Expr)] {
+        &self.constants
     }
 
     /// Records an input that stays a symbol in the expressions, with its constant value if

@@ -412,6 +412,9 @@ pub(crate) fn lower_parts(model: &Model, shift: Shift) -> Result<(System, Geomet
             }
             Declaration::Constant(id) => {
                 let value = l.expr(&model.constant(id).value)?;
+                if let Value::Scalar(x) = &value {
+                    system.add_constant(&model.constant(id).name.name, *x);
+                }
                 l.constants[id.index()] = Some(value);
             }
             Declaration::Frame(id) => {

@@ -11,6 +11,47 @@ use std::fmt::Write as _;
 use cas::print::{to_latex, to_unicode};
 use cas::Expr;
 
+/// How a report writes the system's expressions: the model's named constants folded back in
+/// (`m g b sin θ`, not `m g d cos² α sin θ`) and a time-independent denominator spread over
+/// the terms (`(I1 + I2 r²) φ̈1`, not one fraction over `R2²`); see
+/// [`cas::print::spread_and_fold`]. The value is never changed.
+#[derive(Clone, Debug, Default)]
+pub struct Notation {
+    names: Vec<(Expr, Expr)>,
+}
+
+impl Notation {
+    /// The notation of a system: its named constants.
+    #[must_use]
+    pub fn of(system: &mechanics::System) -> Notation {
+        Notation {
+            names: system
+                .constants()
+                .iter()
+                .map(|(name, value)| (Expr::symbol(name), *value))
+                .collect(),
+        }
+    }
+
+    /// The expression as people read it in this notation.
+    #[must_use]
+    pub fn shape(&self, e: Expr) -> Expr {
+        cas::print::spread_and_fold(e, &self.names)
+    }
+
+    /// [`Math::expr`] of the shaped expression.
+    #[must_use]
+    pub fn math(&self, e: Expr) -> Math {
+        Math::expr(self.shape(e))
+    }
+
+    /// [`Math::vector`] of the shaped components.
+    #[must_use]
+    pub fn vector(&self, components: &[Expr; 3]) -> Math {
+        Math::vector(&components.map(|c| self.shape(c)))
+    }
+}
+
 /// A piece of mathematics in the two notations people read.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Math {

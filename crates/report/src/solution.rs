@@ -9,7 +9,7 @@
 use cas::Expr;
 use mechanics::{angular_velocity, Equations, System};
 
-use crate::document::{Block, Cell, Document, Equation, Math, Section};
+use crate::document::{Block, Cell, Document, Equation, Math, Notation, Section};
 
 /// Step-by-step derivatives are written out up to this many coordinates; beyond, only the
 /// resulting equations (a 10-link pendulum's steps fill pages and say nothing new).
@@ -18,12 +18,13 @@ const STEP_BY_STEP_MAX: usize = 6;
 /// The sections of the solution that the equations of motion answer.
 #[must_use]
 pub fn equations_of_motion_sections(system: &System, equations: &Equations) -> Vec<Section> {
+    let notation = Notation::of(system);
     vec![
-        system_section(system, equations),
-        kinematics_section(system),
-        lagrangian_section(equations),
-        lagrange_section(equations),
-        first_integrals_section(equations),
+        system_section(system, equations, &notation),
+        kinematics_section(system, &notation),
+        lagrangian_section(equations, &notation),
+        lagrange_section(equations, &notation),
+        first_integrals_section(equations, &notation),
     ]
 }
 
@@ -44,7 +45,7 @@ fn rate(q: &str, k: u8) -> Math {
     Math::expr(Expr::rate(q, k))
 }
 
-fn system_section(system: &System, equations: &Equations) -> Section {
+fn system_section(system: &System, equations: &Equations, notation: &Notation) -> Section {
     let mut s = Section::new("The system", 2);
     let names: Vec<String> = system
         .coordinates()
@@ -61,7 +62,7 @@ fn system_section(system: &System, equations: &Equations) -> Section {
             "The constraint `{}` integrates: {} = {}, so {} is not independent.",
             e.constraint,
             coordinate(&e.coordinate).unicode,
-            Math::expr(e.value).unicode,
+            notation.math(e.value).unicode,
             coordinate(&e.coordinate).unicode
         ));
     }
@@ -70,7 +71,7 @@ fn system_section(system: &System, equations: &Equations) -> Section {
             "{} is driven: {} = {}.",
             coordinate(name).unicode,
             coordinate(name).unicode,
-            Math::expr(*motion).unicode
+            notation.math(*motion).unicode
         ));
     }
     if !equations.constraint_names().is_empty() {
@@ -86,7 +87,7 @@ fn system_section(system: &System, equations: &Equations) -> Section {
             vec![
                 Cell::Math(Math::expr(Expr::symbol(name))),
                 match value {
-                    Some(v) => Cell::Math(Math::expr(*v)),
+                    Some(v) => Cell::Math(notation.math(*v)),
                     None => Cell::Text("symbolic".into()),
                 },
             ]
@@ -98,10 +99,26 @@ fn system_section(system: &System, equations: &Equations) -> Section {
             rows,
         });
     }
+    if !system.constants().is_empty() {
+        s.paragraph("Named constants, written by name wherever their value appears below:");
+        s.blocks.push(Block::Table {
+            header: vec!["constant".into(), "value".into()],
+            rows: system
+                .constants()
+                .iter()
+                .map(|(name, value)| {
+                    vec![
+                        Cell::Math(Math::expr(Expr::symbol(name))),
+                        Cell::Math(Math::expr(*value)),
+                    ]
+                })
+                .collect(),
+        });
+    }
     s
 }
 
-fn kinematics_section(system: &System) -> Section {
+fn kinematics_section(system: &System, notation: &Notation) -> Section {
     let mut s = Section::new("Kinematics", 2);
     s.paragraph(
         "Positions and velocities in the inertial frame (unit vectors x̂, ŷ, ẑ); velocities are \
@@ -116,11 +133,11 @@ fn kinematics_section(system: &System) -> Section {
         let (unicode, latex) = point_label(name);
         lines.push(Equation::new(
             Math::label(format!("r_{unicode}"), format!(r"\vec{{r}}_{{{latex}}}")),
-            Math::vector(position),
+            notation.vector(position),
         ));
         lines.push(Equation::new(
             Math::label(format!("v_{unicode}"), format!(r"\vec{{v}}_{{{latex}}}")),
-            Math::vector(&velocity(position)),
+            notation.vector(&velocity(position)),
         ));
     };
     if system.points().is_empty() {
@@ -145,7 +162,7 @@ fn kinematics_section(system: &System) -> Section {
                     b.name.replace('_', r"\_")
                 ),
             ),
-            Math::vector(&angular_velocity(&b.rotation)),
+            notation.vector(&angular_velocity(&b.rotation)),
         ));
     }
     s.equations(lines);
@@ -161,23 +178,23 @@ fn point_label(name: &str) -> (String, String) {
     (name.to_string(), latex)
 }
 
-fn lagrangian_section(equations: &Equations) -> Section {
+fn lagrangian_section(equations: &Equations, notation: &Notation) -> Section {
     let mut s = Section::new("Lagrangian function", 2);
     let k = equations.kinetic_energy();
     let v = equations.potential_energy();
     s.equations(vec![
-        Equation::new(Math::label("K", "K"), Math::expr(k)),
-        Equation::new(Math::label("U", "U"), Math::expr(-v)),
+        Equation::new(Math::label("K", "K"), notation.math(k)),
+        Equation::new(Math::label("U", "U"), notation.math(-v)),
         Equation::new(
             Math::label("L = K + U", "L = K + U"),
-            Math::expr(equations.lagrangian()),
+            notation.math(equations.lagrangian()),
         ),
     ]);
     s.paragraph("U is the force function (U = −V, V the potential energy).");
     s
 }
 
-fn lagrange_section(equations: &Equations) -> Section {
+fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
     let mut s = Section::new("Lagrange equations (II type)", 2);
     let coordinates = equations.coordinates();
     let n = coordinates.len();
@@ -205,7 +222,7 @@ fn lagrange_section(equations: &Equations) -> Section {
             s.blocks
                 .push(Block::Paragraph(format!("Coordinate {}:", qs.unicode)));
             s.equations(vec![
-                Equation::new(dl_dqd_label.clone(), Math::expr(momentum)),
+                Equation::new(dl_dqd_label.clone(), notation.math(momentum)),
                 Equation::new(
                     Math::label(
                         format!("d/dt(∂L/∂{})", qd.unicode),
@@ -214,18 +231,18 @@ fn lagrange_section(equations: &Equations) -> Section {
                             qd.latex
                         ),
                     ),
-                    Math::expr(d_momentum),
+                    notation.math(d_momentum),
                 ),
                 Equation::new(
                     Math::label(
                         format!("∂L/∂{}", qs.unicode),
                         format!(r"\frac{{\partial L}}{{\partial {}}}", qs.latex),
                     ),
-                    Math::expr(dl_dq),
+                    notation.math(dl_dq),
                 ),
                 Equation::new(
                     Math::label(format!("Q_{}", qs.unicode), format!("Q_{{{}}}", qs.latex)),
-                    Math::expr(equations.generalized_forces()[j]),
+                    notation.math(equations.generalized_forces()[j]),
                 ),
             ]);
         }
@@ -253,7 +270,7 @@ fn lagrange_section(equations: &Equations) -> Section {
                 .zip(&multipliers)
                 .filter_map(|(row, lambda)| row.get(j).map(|a| *lambda * *a))
                 .sum::<Expr>();
-            Equation::new(Math::expr(*lhs), Math::expr(*q - reactions))
+            Equation::new(notation.math(*lhs), notation.math(*q - reactions))
         })
         .collect();
     pure.equations(lines);
@@ -267,7 +284,7 @@ fn lagrange_section(equations: &Equations) -> Section {
                 .zip(coordinates)
                 .map(|(a, q)| *a * Expr::rate(q, 2))
                 .sum::<Expr>();
-            Equation::new(Math::expr(lhs), Math::expr(*b))
+            Equation::new(notation.math(lhs), notation.math(*b))
         })
         .collect();
     if !constraint_lines.is_empty() {
@@ -283,7 +300,10 @@ fn lagrange_section(equations: &Equations) -> Section {
             coordinates
                 .iter()
                 .zip(accelerations)
-                .map(|(q, a)| Equation::new(rate(q, 2), Math::expr(*a)))
+                .enumerate()
+                .map(|(j, (q, a))| {
+                    Equation::new(rate(q, 2), acceleration(equations, notation, j, *a))
+                })
                 .collect(),
         );
     }
@@ -293,6 +313,37 @@ fn lagrange_section(equations: &Equations) -> Section {
     ));
     s.blocks.extend(pure.blocks);
     s
+}
+
+/// An explicit acceleration as people write it. Where the equation of `q_j` involves no other
+/// acceleration (one coordinate, or a diagonal row of `M`), that is `f_j/M_jj`, each shaped on
+/// its own (`θ̈ = −m g b sin θ/Ĩ` keeps the inertia `Ĩ` whole), when that prints shorter than
+/// the single fraction of the normal form.
+#[must_use]
+pub fn acceleration(equations: &Equations, notation: &Notation, j: usize, a: Expr) -> Math {
+    let single = notation.math(a);
+    let (Some(row), Some(f)) = (equations.mass_matrix().get(j), equations.forcing().get(j)) else {
+        return single;
+    };
+    let diagonal = row
+        .iter()
+        .enumerate()
+        .all(|(k, m)| k == j || m.is_literal_zero());
+    if !diagonal || !equations.constraint_names().is_empty() {
+        return single;
+    }
+    let Some(m) = row.get(j) else {
+        return single;
+    };
+    let quotient = Math::expr(Expr::mul_all([
+        notation.shape(*f),
+        notation.shape(*m).powi(-1),
+    ]));
+    if quotient.unicode.chars().count() < single.unicode.chars().count() {
+        quotient
+    } else {
+        single
+    }
 }
 
 /// The conditions under which a first integral holds, `C = 0 and F = 0`; `None` when it
@@ -310,7 +361,7 @@ pub fn conditions_text(f: &mechanics::FirstIntegral) -> Option<String> {
     Some(zeros.join(" and "))
 }
 
-fn first_integrals_section(equations: &Equations) -> Section {
+fn first_integrals_section(equations: &Equations, notation: &Notation) -> Section {
     let mut s = Section::new("First integrals", 2);
     if equations.first_integrals().is_empty() {
         s.paragraph(
@@ -344,7 +395,7 @@ fn first_integrals_section(equations: &Equations) -> Section {
             ),
         };
         s.paragraph(format!("Conserved{condition}: {what}."));
-        s.equations(vec![Equation::new(label, Math::expr(f.value))]);
+        s.equations(vec![Equation::new(label, notation.math(f.value))]);
     }
     // The seed's second method for one degree of freedom: dh/dt = q̇ · (equation of motion).
     let coordinates = equations.coordinates();
@@ -364,7 +415,7 @@ fn first_integrals_section(equations: &Equations) -> Section {
                 "Energy method (one degree of freedom): dh/dt = {} · ({}) = 0; for motions with \
                  {} ≠ 0 this is the equation of motion again.",
                 rate(q, 1).unicode,
-                Math::expr(lhs).unicode,
+                notation.math(lhs).unicode,
                 rate(q, 1).unicode
             ));
         }

@@ -7,7 +7,7 @@ use cas::Expr;
 use mechanics::equilibria::{EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
 
-use crate::document::{Block, Cell, Equation, Math, Section};
+use crate::document::{Block, Cell, Equation, Math, Notation, Section};
 use crate::equilibria::{condition_text, stability_word, LinearizedResult};
 
 /// Both sections.
@@ -16,10 +16,11 @@ pub fn equilibria_sections(
     rest: &RestEquations,
     set: &EquilibriumSet,
     lin: &[LinearizedResult],
+    notation: &Notation,
 ) -> Vec<Section> {
     vec![
-        equilibria_section(rest, set, lin),
-        linearized_section(rest, lin),
+        equilibria_section(rest, set, lin, notation),
+        linearized_section(rest, lin, notation),
     ]
 }
 
@@ -31,6 +32,7 @@ fn equilibria_section(
     rest: &RestEquations,
     set: &EquilibriumSet,
     lin: &[LinearizedResult],
+    notation: &Notation,
 ) -> Section {
     let mut s = Section::new("Equilibria and their stability", 2);
     s.paragraph(format!(
@@ -59,7 +61,7 @@ fn equilibria_section(
                         format!("0 (eq. of {})", coordinate(q).unicode),
                         "0".to_string(),
                     ),
-                    Math::expr(*r),
+                    notation.math(*r),
                 )
             })
             .collect(),
@@ -84,7 +86,7 @@ fn equilibria_section(
                 row.push(match (free, exact) {
                     (true, _) => Cell::Text("any".into()),
                     (false, Some(x)) if x.as_number().is_none() => {
-                        let m = Math::expr(x);
+                        let m = notation.math(x);
                         Cell::Math(Math::label(
                             format!("{} ≈ {v:.4}", m.unicode),
                             format!(r"{} \approx {v:.4}", m.latex),
@@ -168,14 +170,14 @@ fn matrix(m: &[Vec<f64>]) -> Math {
 }
 
 /// A symbolic matrix in both notations.
-fn exact_matrix(m: &[Vec<Expr>]) -> Math {
+fn exact_matrix(m: &[Vec<Expr>], notation: &Notation) -> Math {
     let unicode = m
         .iter()
         .map(|r| {
             format!(
                 "[{}]",
                 r.iter()
-                    .map(|e| Math::expr(*e).unicode)
+                    .map(|e| notation.math(*e).unicode)
                     .collect::<Vec<_>>()
                     .join(", ")
             )
@@ -187,7 +189,7 @@ fn exact_matrix(m: &[Vec<Expr>]) -> Math {
         m.iter()
             .map(|r| r
                 .iter()
-                .map(|e| Math::expr(*e).latex)
+                .map(|e| notation.math(*e).latex)
                 .collect::<Vec<_>>()
                 .join(" & "))
             .collect::<Vec<_>>()
@@ -196,7 +198,11 @@ fn exact_matrix(m: &[Vec<Expr>]) -> Math {
     Math::label(unicode, latex)
 }
 
-fn linearized_section(rest: &RestEquations, lin: &[LinearizedResult]) -> Section {
+fn linearized_section(
+    rest: &RestEquations,
+    lin: &[LinearizedResult],
+    notation: &Notation,
+) -> Section {
     let mut s = Section::new("Linearized dynamics", 2);
     s.paragraph(
         "About each equilibrium q0: M0 δq̈ + C0 δq̇ + K0 δq = B0 δu, with M0 = M(q0), \
@@ -208,13 +214,13 @@ fn linearized_section(rest: &RestEquations, lin: &[LinearizedResult]) -> Section
             "About equilibrium {i} ({}):",
             stability_word(l.stable)
         ));
-        s.equations(linear_lines(l));
+        s.equations(linear_lines(l, notation));
         s.paragraph(frequencies_sentence(rest, l));
     }
     s
 }
 
-fn linear_lines(l: &Linearized) -> Vec<Equation> {
+fn linear_lines(l: &Linearized, notation: &Notation) -> Vec<Equation> {
     let names = [("M0", "M_0"), ("C0", "C_0"), ("K0", "K_0"), ("B0", "B_0")];
     let numeric = [&l.m0, &l.c0, &l.k0, &l.b0];
     let has_inputs = l.b0.iter().any(|row| !row.is_empty());
@@ -227,7 +233,7 @@ fn linear_lines(l: &Linearized) -> Vec<Equation> {
             let numbers = matrix(numeric[k]);
             let rhs = match &l.exact {
                 Some(exact) => {
-                    let symbolic = exact_matrix(&exact[k]);
+                    let symbolic = exact_matrix(&exact[k], notation);
                     // In a terminal a long symbolic matrix does not fit: the numbers only.
                     let both =
                         symbolic.unicode.chars().count() + 3 + numbers.unicode.chars().count();

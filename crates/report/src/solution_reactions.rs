@@ -4,7 +4,7 @@
 
 use mechanics::{Reaction, ReleaseKind, Unilateral};
 
-use crate::document::{Equation, Math, Section};
+use crate::document::{Equation, Math, Notation, Section};
 use crate::UnilateralReport;
 
 /// The section, from the reactions and their unilateral analyses (same order).
@@ -12,6 +12,7 @@ use crate::UnilateralReport;
 pub fn reactions_section(
     reactions: &[Reaction],
     unilateral: &[Option<UnilateralReport>],
+    notation: &Notation,
 ) -> Section {
     let mut s = Section::new("Constraint reactions", 2);
     s.paragraph(
@@ -39,7 +40,7 @@ pub fn reactions_section(
                     format!("R_{}", r.name),
                     format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
                 ),
-                Math::vector(force),
+                notation.vector(force),
             ));
         }
         if let Some(couple) = &r.couple {
@@ -48,7 +49,7 @@ pub fn reactions_section(
                     format!("C_{}", r.name),
                     format!(r"\vec{{C}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
                 ),
-                Math::vector(couple),
+                notation.vector(couple),
             ));
         }
         let symbol = match r.kind {
@@ -58,7 +59,7 @@ pub fn reactions_section(
         if let Some((value, _)) = &r.along {
             lines.push(Equation::new(
                 Math::label(symbol, symbol),
-                Math::expr(*value),
+                notation.math(*value),
             ));
         }
         for (q, e) in &r.generalized {
@@ -68,7 +69,7 @@ pub fn reactions_section(
                     format!("Q^R_{}", q_math.unicode),
                     format!("Q^R_{{{}}}", q_math.latex),
                 ),
-                Math::expr(*e),
+                notation.math(*e),
             ));
         }
         s.equations(lines);
@@ -78,7 +79,7 @@ pub fn reactions_section(
                  transmit: loads the release cannot attribute to these bodies act on them (other \
                  supports built into the coordinates, whose forces R then includes, or generalized \
                  forces such as the seed's C), or the joint transmits a couple (ask for a clamp).",
-                Math::vector(c).unicode
+                notation.vector(c).unicode
             ));
         }
         if r.along.is_some() {
@@ -95,7 +96,7 @@ pub fn reactions_section(
                             format!("{symbol} (along the motion, h = h₀)"),
                             format!(r"{symbol}\big|_{{h = h_0}}"),
                         ),
-                        Math::expr(along),
+                        notation.math(along),
                     )]);
                 }
                 match &u.scan {

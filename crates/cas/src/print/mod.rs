@@ -17,6 +17,7 @@
 mod compact;
 mod names;
 mod order;
+mod present;
 mod pretty;
 mod sympy;
 
@@ -25,6 +26,7 @@ use std::fmt;
 use crate::expr::Expr;
 
 pub(crate) use names::ascii_name_of;
+pub use present::{fold_names, spread_and_fold, spread_denominator};
 
 /// SymPy syntax for `e`, printed node for node: `parse(&to_sympy(e), &ParseContext::for_expr(e))`
 /// gives back `e` itself.

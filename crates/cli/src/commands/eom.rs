@@ -4,6 +4,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use cas::print::to_unicode;
+use report::document::Notation;
 
 use crate::args::EomFormat;
 
@@ -23,6 +24,9 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
             println!("{}", serde_json::to_string_pretty(&value)?);
         }
         EomFormat::Text => {
+            // The model's constants by name, denominators spread, as in `solve`.
+            let notation = Notation::of(&system);
+            let shown = |e: cas::Expr| notation.math(e).unicode;
             for e in equations.eliminated() {
                 println!(
                     "{} eliminated by constraint `{}`: {} = {}",
@@ -32,8 +36,8 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
                     to_unicode(e.value)
                 );
             }
-            println!("K = {}", to_unicode(equations.kinetic_energy()));
-            println!("V = {}", to_unicode(equations.potential_energy()));
+            println!("K = {}", shown(equations.kinetic_energy()));
+            println!("V = {}", shown(equations.potential_energy()));
             println!();
             // M q̈ + Aᵀλ = f is printed as d/dt ∂L/∂q̇ − ∂L/∂q = Q − Σ λ_i A_ij.
             let multipliers: Vec<cas::Expr> = (1..=equations.constraint_names().len())
@@ -51,7 +55,7 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
                     .zip(&multipliers)
                     .filter_map(|(row, lambda)| row.get(j).map(|a| *lambda * *a))
                     .sum::<cas::Expr>();
-                println!("{} = {}", to_unicode(*lhs), to_unicode(*q - reactions));
+                println!("{} = {}", shown(*lhs), shown(*q - reactions));
             }
             for (name, ((row, b), lambda)) in equations.constraint_names().iter().zip(
                 equations
@@ -75,11 +79,16 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
             if let Some(accelerations) = equations.accelerations() {
                 println!();
                 println!("solved for the accelerations:");
-                for (q, a) in equations.coordinates().iter().zip(accelerations) {
+                for (j, (q, a)) in equations
+                    .coordinates()
+                    .iter()
+                    .zip(accelerations)
+                    .enumerate()
+                {
                     println!(
                         "  {} = {}",
                         to_unicode(cas::Expr::rate(q, 2)),
-                        to_unicode(*a)
+                        report::solution::acceleration(&equations, &notation, j, *a).unicode
                     );
                 }
             }
@@ -91,12 +100,8 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
                     .map(|c| format!(" while {c}"))
                     .unwrap_or_default();
                 match &f.coordinate {
-                    Some(q) => println!("conserved{condition}: p_{q} = {}", to_unicode(f.value)),
-                    None => println!(
-                        "conserved ({}){condition}: h = {}",
-                        f.kind,
-                        to_unicode(f.value)
-                    ),
+                    Some(q) => println!("conserved{condition}: p_{q} = {}", shown(f.value)),
+                    None => println!("conserved ({}){condition}: h = {}", f.kind, shown(f.value)),
                 }
             }
         }

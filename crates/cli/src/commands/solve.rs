@@ -29,6 +29,7 @@ pub fn run(
         Ok(derived) => derived,
         Err(code) => return Ok(code),
     };
+    let notation = report::document::Notation::of(&system);
     let mut document =
         report::solution::solution_document(&title(path, &source), &system, &equations);
     if let Some(section) = document.sections.first_mut() {
@@ -41,7 +42,7 @@ pub fn run(
             document
                 .sections
                 .extend(report::solution_equilibria::equilibria_sections(
-                    &rest, &set, &lin,
+                    &rest, &set, &lin, &notation,
                 ))
         }
         Err(why) => {
@@ -72,6 +73,7 @@ pub fn run(
                 .push(report::solution_reactions::reactions_section(
                     &computed.reactions,
                     &computed.unilateral,
+                    &notation,
                 ));
         }
         Ok(None) => {}
