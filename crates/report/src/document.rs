@@ -424,23 +424,48 @@ impl Document {
     }
 }
 
-/// LaTeX characters per display line before a long right-hand side is broken.
-const LATEX_LINE: usize = 110;
+/// Glyphs per display line (see [`visible_width`]) before a long right-hand side is broken:
+/// the text width of the LaTeX document (2 cm margins) in 10 pt mathematics, with room to spare.
+const LATEX_LINE: usize = 75;
 
-/// The body of an `aligned`/`align*` display: `lhs &= rhs`, a long `rhs` broken before its
-/// top-level `+`/`-` onto continuation lines `&\quad + …`.
+/// The body of an `aligned`/`align*` display: `lhs &= rhs`, a long `rhs` broken before a
+/// `+`/`-` onto continuation lines `&\quad + …`. Top-level signs are tried first; a right-hand
+/// side that still does not fit is rewritten so that it can break inside its brackets too
+/// ([`breakable_latex`]).
 fn aligned_lines(lines: &[Equation]) -> String {
     let mut rows = Vec::new();
     for e in lines {
-        let mut current = format!("{} &= ", e.lhs.latex);
+        // A long left-hand side (an equation of motion `… = 0`) is broken like a right-hand
+        // side: the whole equation goes right of the alignment point.
+        let (head, body) = if visible_width(&e.lhs.latex) > LATEX_LINE / 2 {
+            (
+                "& ".to_string(),
+                format!("{} = {}", e.lhs.latex, e.rhs.latex),
+            )
+        } else {
+            (format!("{} &= ", e.lhs.latex), e.rhs.latex.clone())
+        };
+        let mut pieces = latex_terms(&body);
+        let head_width = visible_width(&head);
+        let room = LATEX_LINE - head_width.min(LATEX_LINE / 2);
+        let rewritten;
+        if pieces.iter().any(|p| visible_width(p) > room) {
+            rewritten = breakable_latex(&body);
+            pieces = latex_pieces(&rewritten, false);
+        }
+        let mut current = head;
+        let mut width = head_width;
         let mut first = true;
-        for term in latex_terms(&e.rhs.latex) {
-            if !first && current.len() + term.len() > LATEX_LINE {
+        for term in pieces {
+            let term_width = visible_width(term);
+            if !first && width + term_width > LATEX_LINE {
                 rows.push(current.trim_end().to_string());
                 current = String::from("&\\quad ");
+                width = 2;
             }
             current.push_str(term.trim_start());
             current.push(' ');
+            width += term_width;
             first = false;
         }
         rows.push(current.trim_end().to_string());
@@ -448,8 +473,64 @@ fn aligned_lines(lines: &[Equation]) -> String {
     rows.join(" \\\\\n")
 }
 
+/// About how many glyph widths LaTeX mathematics takes on the page: a command such as
+/// `\theta` is one glyph, accents, brackets' sizes, braces and spaces none, `\cos` three,
+/// an operator with its spacing two, and a `\frac` as wide as the wider of its parts.
+fn visible_width(s: &str) -> usize {
+    let mut width = 0;
+    let mut rest = s;
+    while let Some(ch) = rest.chars().next() {
+        if let Some(after) = rest.strip_prefix("\\frac{") {
+            if let Some((num, tail)) = braced(after) {
+                if let Some((den, tail)) = tail.strip_prefix('{').and_then(braced) {
+                    width += visible_width(num).max(visible_width(den));
+                    rest = tail;
+                    continue;
+                }
+            }
+        }
+        if ch == '\\' {
+            let name: String = rest[1..]
+                .chars()
+                .take_while(char::is_ascii_alphabetic)
+                .collect();
+            width += match name.as_str() {
+                "" => 1,
+                "left" | "right" | "bigl" | "bigr" | "big" | "dot" | "ddot" | "hat" | "vec"
+                | "mathrm" | "text" | "quad" => 0,
+                "sin" | "cos" | "tan" | "exp" | "sqrt" => 3,
+                "ln" => 2,
+                "arcsin" | "arccos" | "arctan" => 6,
+                _ => 1,
+            };
+            // `\name`, or a backslash and one character (`\,`, `\{`, `\\`).
+            let skip = if name.is_empty() {
+                1 + rest[1..].chars().next().map_or(0, char::len_utf8)
+            } else {
+                1 + name.len()
+            };
+            rest = &rest[skip..];
+            continue;
+        }
+        width += match ch {
+            '{' | '}' | '^' | '_' | ' ' | '&' => 0,
+            '+' | '-' | '=' => 2,
+            _ => 1,
+        };
+        rest = &rest[ch.len_utf8()..];
+    }
+    width
+}
+
 /// Splits LaTeX before the ` + ` and ` - ` outside braces and `\left … \right` pairs.
 fn latex_terms(s: &str) -> Vec<&str> {
+    latex_pieces(s, true)
+}
+
+/// Splits LaTeX before the ` + ` and ` - ` outside braces, and also outside `\left … \right`
+/// pairs when `pairs_group` (an `align*` line cannot end inside such a pair; it can inside
+/// `\bigl( … \bigr)`).
+fn latex_pieces(s: &str, pairs_group: bool) -> Vec<&str> {
     let bytes = s.as_bytes();
     let mut depth = 0i32;
     let mut pieces = Vec::new();
@@ -459,8 +540,11 @@ fn latex_terms(s: &str) -> Vec<&str> {
         match bytes[i] {
             b'{' => depth += 1,
             b'}' => depth -= 1,
-            b'\\' if s[i..].starts_with("\\left") => depth += 1,
-            b'\\' if s[i..].starts_with("\\right") => depth -= 1,
+            // A line cannot end inside an environment (a matrix) either.
+            b'\\' if s[i..].starts_with("\\begin{") => depth += 1,
+            b'\\' if s[i..].starts_with("\\end{") => depth -= 1,
+            b'\\' if pairs_group && s[i..].starts_with("\\left") => depth += 1,
+            b'\\' if pairs_group && s[i..].starts_with("\\right") => depth -= 1,
             b' ' if depth == 0
                 && i > start
                 && (s[i..].starts_with(" + ") || s[i..].starts_with(" - ")) =>
@@ -474,6 +558,90 @@ fn latex_terms(s: &str) -> Vec<&str> {
     }
     pieces.push(&s[start..]);
     pieces
+}
+
+/// A fraction whose parts are longer than this is written inline (`\bigl(a + b\bigr) / c`) in
+/// a breakable right-hand side.
+const INLINE_FRACTION: usize = 40;
+
+/// The same mathematics with line-break opportunities inside brackets: `\left( … \right)`
+/// become `\bigl( … \bigr)` (which do not group, so a line may end between them) and long
+/// `\frac{a}{b}` become `\bigl(a\bigr) / \bigl(b\bigr)` (a line cannot end inside `\frac`'s
+/// braces). Only used for right-hand sides too long for one line.
+fn breakable_latex(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 16);
+    let mut rest = s;
+    while !rest.is_empty() {
+        if let Some(after) = rest.strip_prefix("\\frac{") {
+            if let Some((num, tail)) = braced(after) {
+                if let Some((den, tail)) = tail.strip_prefix('{').and_then(braced) {
+                    if num.len() + den.len() > INLINE_FRACTION {
+                        let num = breakable_latex(num);
+                        let den = breakable_latex(den);
+                        out.push_str(&inline_operand(&num, true));
+                        out.push_str(" / ");
+                        out.push_str(&inline_operand(&den, false));
+                    } else {
+                        let _ = write!(out, "\\frac{{{num}}}{{{den}}}");
+                    }
+                    rest = tail;
+                    continue;
+                }
+            }
+        }
+        // Every sized pair, `\left|` of an absolute value too: a line may end inside neither.
+        let sized = [("\\left", "\\bigl"), ("\\right", "\\bigr")]
+            .into_iter()
+            .find_map(|(pair, big)| {
+                let after = rest.strip_prefix(pair)?;
+                let delimiter = after.chars().next().filter(|c| "()[]|".contains(*c))?;
+                Some((big, delimiter, &after[1..]))
+            });
+        if let Some((big, delimiter, after)) = sized {
+            out.push_str(big);
+            out.push(delimiter);
+            rest = after;
+            continue;
+        }
+        let Some(ch) = rest.chars().next() else { break };
+        out.push(ch);
+        rest = &rest[ch.len_utf8()..];
+    }
+    out
+}
+
+/// The text up to the brace that closes an already opened `{`, and what follows it.
+fn braced(s: &str) -> Option<(&str, &str)> {
+    let mut depth = 1;
+    for (i, b) in s.bytes().enumerate() {
+        match b {
+            b'{' => depth += 1,
+            b'}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some((&s[..i], &s[i + 1..]));
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// An inline fraction's operand, bracketed when it needs to be: a numerator with a `+`/`-`
+/// outside braces, a denominator with anything more than one factor.
+fn inline_operand(s: &str, numerator: bool) -> String {
+    let trimmed = s.trim();
+    let needs = if numerator {
+        latex_pieces(trimmed, false).len() > 1 || trimmed.starts_with('-')
+    } else {
+        trimmed.contains(' ')
+    };
+    if needs {
+        format!("\\bigl({trimmed}\\bigr)")
+    } else {
+        trimmed.to_string()
+    }
 }
 
 fn markdown_cell(c: &Cell) -> String {
@@ -783,9 +951,9 @@ mod tests {
     fn long_latex_breaks_at_top_level_signs_only() {
         let rhs = format!(
             "{} + \\left({} + c\\right) - {}",
-            "x".repeat(80),
+            "x".repeat(60),
             "y".repeat(10),
-            "z".repeat(60)
+            "z".repeat(50)
         );
         let body = aligned_lines(&[Equation::new(
             Math::label("f", "f"),
@@ -822,5 +990,42 @@ mod tests {
             let joined: String = out.lines().map(str::trim).collect::<Vec<_>>().join(" ");
             assert_eq!(joined, format!("f = {rhs}"));
         }
+    }
+
+    #[test]
+    fn latex_breaks_inside_long_fractions_and_brackets() {
+        // A fraction whose numerator is too long for a line, as a long left-hand side.
+        let sum = (0..12)
+            .map(|i| format!(r"m_{i} \ddot{{x}}_{i} \left( a_{i} + b_{i} \right)"))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        let lhs = format!(r"\frac{{{sum}}}{{x_1 + x_2}}");
+        let body = aligned_lines(&[Equation::new(
+            Math::label("", lhs.clone()),
+            Math::label("0", "0"),
+        )]);
+        let rows: Vec<&str> = body.split(" \\\\\n").collect();
+        assert!(rows.len() > 2, "{body}");
+        for row in &rows {
+            assert!(visible_width(row) <= LATEX_LINE + 20, "{row}");
+            // Every row is valid on its own: braces balance and no \left is left open.
+            assert_eq!(row.matches('{').count(), row.matches('}').count(), "{row}");
+            assert_eq!(
+                row.matches("\\left").count(),
+                row.matches("\\right").count(),
+                "{row}"
+            );
+        }
+        assert!(rows[0].starts_with("& \\bigl("), "{body}");
+        assert!(
+            body.ends_with(r"\bigr) / \bigl(x_1 + x_2\bigr) = 0"),
+            "{body}"
+        );
+        // Short displays are untouched.
+        assert_eq!(breakable_latex(r"\frac{a}{b}"), r"\frac{a}{b}");
+        assert_eq!(
+            breakable_latex(r"\left|x\right| \left( a + b \right)"),
+            r"\bigl|x\bigr| \bigl( a + b \bigr)"
+        );
     }
 }

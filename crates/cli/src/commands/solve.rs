@@ -59,7 +59,7 @@ pub fn run(
     if model.simulation().is_some() {
         document
             .sections
-            .push(simulation_section(path, &model, out));
+            .push(simulation_section(path, &model, out, format));
     }
     let mut disagree = false;
     match super::reactions::compute(path, &model, &source, &system) {
@@ -154,8 +154,14 @@ fn inputs_sentence(model: &model::Model, source: &str) -> String {
 }
 
 /// The "Simulation" section: the model's own `simulate` settings, run once; with `--out`, the
-/// plots (time histories, phase portraits, energy error) are written beside the report.
-fn simulation_section(path: &Path, model: &model::Model, out: Option<&Path>) -> Section {
+/// plots (time histories, phase portraits, energy error) are written beside the report: SVG
+/// for Markdown and the terminal, PNG for LaTeX (which `pdflatex` cannot include as SVG).
+fn simulation_section(
+    path: &Path,
+    model: &model::Model,
+    out: Option<&Path>,
+    format: ReportFormat,
+) -> Section {
     let mut section = Section::new("Simulation", 2);
     let options = simulation::SimulationOptions::default();
     let mut run = match simulation::Simulation::prepare(model, &options) {
@@ -216,7 +222,11 @@ fn simulation_section(path: &Path, model: &model::Model, out: Option<&Path>) -> 
                 .file_stem()
                 .and_then(|s| s.to_str())
                 .unwrap_or("solution");
-            let file = format!("{stem}-motion.svg");
+            let extension = match format {
+                ReportFormat::Tex => "png",
+                _ => "svg",
+            };
+            let file = format!("{stem}-motion.{extension}");
             match report::plot_run(&dir.join(&file), stem, &columns, &rows) {
                 Ok(()) => section.blocks.push(Block::Figure {
                     path: file,
