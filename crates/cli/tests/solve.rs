@@ -77,6 +77,48 @@ fn the_seed_equations_print_in_the_seed_notation() {
 }
 
 #[test]
+fn the_free_response_starts_from_the_initial_state_and_follows_the_modes() {
+    // 7.1 starts at x = 0.1, θ = 0.3 at rest; about the stable equilibrium (0, 0) the free
+    // response is a sum of the two modes' cosines, whose coefficients add up to the start.
+    let o = lagrange(&["solve", "examples/seed/7.1-cart-pendulum.lag"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    let start = text.find("Free response").expect("a free response");
+    let line = |name: &str| -> Vec<(f64, f64)> {
+        let line = text[start..]
+            .lines()
+            .find(|l| l.trim_start().starts_with(&format!("δ{name}(t) = ")))
+            .unwrap_or_else(|| panic!("no δ{name}(t) in\n{text}"));
+        // Terms `± c cos(ω t)`.
+        let rhs = line.split(" = ").nth(1).expect("a right-hand side");
+        rhs.replace(" − ", " + -")
+            .split(" + ")
+            .map(|term| {
+                let term = term.trim().replace('−', "-");
+                let (c, wave) = term.split_once(" cos(").expect("a cosine term");
+                let w = wave.trim_end_matches(" t)");
+                (
+                    c.parse().expect("a number"),
+                    w.parse().expect("a frequency"),
+                )
+            })
+            .collect()
+    };
+    let (x, theta) = (line("x"), line("θ"));
+    let sum = |terms: &[(f64, f64)]| terms.iter().map(|(c, _)| c).sum::<f64>();
+    assert!((sum(&x) - 0.1).abs() < 1e-3, "{x:?}");
+    assert!((sum(&theta) - 0.3).abs() < 1e-3, "{theta:?}");
+    // The frequencies are the natural frequencies the section states.
+    for (_, w) in x.iter().chain(&theta) {
+        assert!(text.contains(&format!("ω = {w}")), "ω = {w} not in\n{text}");
+    }
+    // 7.4 starts 0.05 rad from the upright position, which is unstable: cosh grows.
+    let o = lagrange(&["solve", "examples/seed/7.4-inverted-pendulum.lag"]);
+    let text = stdout(&o);
+    assert!(text.contains("  δθ(t) = 0.05000 cosh("), "{text}");
+}
+
+#[test]
 fn markdown_latex_and_json_carry_the_equations() {
     let md = stdout(&lagrange(&[
         "solve",

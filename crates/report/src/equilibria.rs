@@ -407,9 +407,31 @@ pub fn sweep_text(rest: &RestEquations, parameter: &str, rows: &[SweepRow]) -> S
     out
 }
 
-/// `δq_i(t)` in closed form, one SymPy-syntax string per coordinate (`t` is time); `None`
-/// when the response has no closed form here (damped systems).
-fn free_response_formulas(l: &Linearized, dq0: &[f64], dv0: &[f64]) -> Option<Vec<String>> {
+/// One term of a free response: a coefficient times a function of time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Wave {
+    /// `cos(ω t)`.
+    Cos(f64),
+    /// `sin(ω t)`.
+    Sin(f64),
+    /// `cosh(γ t)` (a divergent mode, `ω² = −γ²`).
+    Cosh(f64),
+    /// `sinh(γ t)`.
+    Sinh(f64),
+    /// `1` (a neutral mode's offset).
+    One,
+    /// `t` (a neutral mode's drift).
+    Time,
+}
+
+/// `δq_i(t) = Σ c · wave(t)` for every coordinate, from the modes: `None` when the response has
+/// no closed form here (damped systems).
+#[must_use]
+pub fn free_response_waves(
+    l: &Linearized,
+    dq0: &[f64],
+    dv0: &[f64],
+) -> Option<Vec<Vec<(f64, Wave)>>> {
     let terms = l.modal_terms(dq0, dv0)?;
     let n = l.m0.len();
     let scale = dq0.iter().chain(dv0).fold(0.0_f64, |a, v| a.max(v.abs()));
@@ -417,43 +439,55 @@ fn free_response_formulas(l: &Linearized, dq0: &[f64], dv0: &[f64]) -> Option<Ve
     Some(
         (0..n)
             .map(|i| {
-                let mut parts: Vec<String> = Vec::new();
+                let mut parts = Vec::new();
                 for term in &terms {
                     let a = term.shape[i] * term.a;
                     let b = term.shape[i] * term.b;
                     let w2 = term.omega_squared;
                     let tol = 1e-12 * w2.abs().max(1.0);
-                    let (ca, cb, fa, fb) = if w2 > tol {
+                    let pair = if w2 > tol {
                         let w = w2.sqrt();
-                        (
-                            a,
-                            b / w,
-                            format!("cos({w:.12}*t)"),
-                            format!("sin({w:.12}*t)"),
-                        )
+                        [(a, Wave::Cos(w)), (b / w, Wave::Sin(w))]
                     } else if w2 < -tol {
                         let g = (-w2).sqrt();
-                        (
-                            a,
-                            b / g,
-                            format!("cosh({g:.12}*t)"),
-                            format!("sinh({g:.12}*t)"),
-                        )
+                        [(a, Wave::Cosh(g)), (b / g, Wave::Sinh(g))]
                     } else {
-                        (a, b, "1".to_string(), "t".to_string())
+                        [(a, Wave::One), (b, Wave::Time)]
                     };
-                    if ca.abs() > tiny {
-                        parts.push(format!("{ca:.12e}*{fa}"));
-                    }
-                    if cb.abs() > tiny {
-                        parts.push(format!("{cb:.12e}*{fb}"));
-                    }
+                    parts.extend(pair.into_iter().filter(|(c, _)| c.abs() > tiny));
                 }
+                parts
+            })
+            .collect(),
+    )
+}
+
+/// `δq_i(t)` in closed form, one SymPy-syntax string per coordinate (`t` is time); `None`
+/// when the response has no closed form here (damped systems).
+fn free_response_formulas(l: &Linearized, dq0: &[f64], dv0: &[f64]) -> Option<Vec<String>> {
+    let waves = free_response_waves(l, dq0, dv0)?;
+    Some(
+        waves
+            .into_iter()
+            .map(|parts| {
                 if parts.is_empty() {
-                    "0".to_string()
-                } else {
-                    parts.join(" + ")
+                    return "0".to_string();
                 }
+                parts
+                    .iter()
+                    .map(|(c, wave)| {
+                        let f = match wave {
+                            Wave::Cos(w) => format!("cos({w:.12}*t)"),
+                            Wave::Sin(w) => format!("sin({w:.12}*t)"),
+                            Wave::Cosh(g) => format!("cosh({g:.12}*t)"),
+                            Wave::Sinh(g) => format!("sinh({g:.12}*t)"),
+                            Wave::One => "1".to_string(),
+                            Wave::Time => "t".to_string(),
+                        };
+                        format!("{c:.12e}*{f}")
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" + ")
             })
             .collect(),
     )

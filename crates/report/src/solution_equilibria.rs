@@ -8,7 +8,9 @@ use mechanics::equilibria::{EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
 
 use crate::document::{Block, Cell, Equation, Math, Notation, Section};
-use crate::equilibria::{condition_text, stability_word, LinearizedResult};
+use crate::equilibria::{
+    condition_text, free_response_waves, stability_word, LinearizedResult, Wave,
+};
 
 /// Both sections.
 #[must_use]
@@ -17,10 +19,11 @@ pub fn equilibria_sections(
     set: &EquilibriumSet,
     lin: &[LinearizedResult],
     notation: &Notation,
+    initial: Option<&InitialState>,
 ) -> Vec<Section> {
     vec![
         equilibria_section(rest, set, lin, notation),
-        linearized_section(rest, lin, notation),
+        linearized_section(rest, set, lin, notation, initial),
     ]
 }
 
@@ -200,8 +203,10 @@ fn exact_matrix(m: &[Vec<Expr>], notation: &Notation) -> Math {
 
 fn linearized_section(
     rest: &RestEquations,
+    set: &EquilibriumSet,
     lin: &[LinearizedResult],
     notation: &Notation,
+    initial: Option<&InitialState>,
 ) -> Section {
     let mut s = Section::new("Linearized dynamics", 2);
     s.paragraph(
@@ -217,7 +222,161 @@ fn linearized_section(
         s.equations(linear_lines(l, notation));
         s.paragraph(frequencies_sentence(rest, l));
     }
+    if let Some(initial) = initial {
+        free_response(&mut s, rest, set, lin, initial);
+    }
     s
+}
+
+/// The model's initial state by the rest equations' coordinates: positions and rates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InitialState {
+    /// `q(0)`.
+    pub positions: Vec<f64>,
+    /// `q̇(0)`.
+    pub rates: Vec<f64>,
+}
+
+/// The free response from the model's initial state, in closed form (a sum of modes), about
+/// the nearest equilibrium whose linearization is known.
+fn free_response(
+    s: &mut Section,
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+    initial: &InitialState,
+) {
+    let n = rest.coordinates.len();
+    if initial.positions.len() != n || initial.rates.len() != n {
+        return;
+    }
+    let distance = |values: &[f64]| -> f64 {
+        values
+            .iter()
+            .zip(&initial.positions)
+            .enumerate()
+            .filter(|(k, _)| !rest.free.get(*k).copied().unwrap_or(false))
+            .map(|(_, (e, q))| (q - e).powi(2))
+            .sum()
+    };
+    let nearest = set
+        .equilibria
+        .iter()
+        .zip(lin)
+        .enumerate()
+        .filter_map(|(i, (e, l))| l.as_ref().ok().map(|l| (i, e, l)))
+        .min_by(|a, b| distance(&a.1.values).total_cmp(&distance(&b.1.values)));
+    let Some((i, e, l)) = nearest else { return };
+    let dq0: Vec<f64> = initial
+        .positions
+        .iter()
+        .zip(&e.values)
+        .map(|(q, e)| q - e)
+        .collect();
+    match free_response_waves(l, &dq0, &initial.rates) {
+        Some(waves) => {
+            s.paragraph(format!(
+                "Free response from the model's initial state, linearized about equilibrium {i} \
+                 (the nearest; δq = q − q0, valid while the deviations stay small):"
+            ));
+            s.equations(
+                rest.coordinates
+                    .iter()
+                    .zip(waves)
+                    .map(|(q, parts)| {
+                        let q = coordinate(q);
+                        Equation::new(
+                            Math::label(
+                                format!("δ{}(t)", q.unicode),
+                                format!(r"\delta {}(t)", q.latex),
+                            ),
+                            wave_sum(&parts),
+                        )
+                    })
+                    .collect(),
+            );
+        }
+        None => {
+            s.paragraph(format!(
+                "Free response about equilibrium {i}: no closed form as a sum of undamped modes \
+                 (the linearization is damped); the simulation shows the motion."
+            ));
+        }
+    }
+}
+
+/// `Σ c · wave(t)` in both notations, coefficients to four significant digits.
+fn wave_sum(parts: &[(f64, Wave)]) -> Math {
+    if parts.is_empty() {
+        return Math::label("0", "0");
+    }
+    let mut unicode = String::new();
+    let mut latex = String::new();
+    for (k, (c, wave)) in parts.iter().enumerate() {
+        let magnitude = significant(c.abs());
+        match (k, *c < 0.0) {
+            (0, true) => {
+                unicode.push('−');
+                latex.push('-');
+            }
+            (0, false) => {}
+            (_, true) => {
+                unicode.push_str(" − ");
+                latex.push_str(" - ");
+            }
+            (_, false) => {
+                unicode.push_str(" + ");
+                latex.push_str(" + ");
+            }
+        }
+        let (u, l) = match wave {
+            Wave::Cos(w) => (
+                format!("cos({} t)", significant(*w)),
+                format!(r"\cos({}\, t)", significant(*w)),
+            ),
+            Wave::Sin(w) => (
+                format!("sin({} t)", significant(*w)),
+                format!(r"\sin({}\, t)", significant(*w)),
+            ),
+            Wave::Cosh(g) => (
+                format!("cosh({} t)", significant(*g)),
+                format!(r"\cosh({}\, t)", significant(*g)),
+            ),
+            Wave::Sinh(g) => (
+                format!("sinh({} t)", significant(*g)),
+                format!(r"\sinh({}\, t)", significant(*g)),
+            ),
+            Wave::One => (String::new(), String::new()),
+            Wave::Time => ("t".to_string(), "t".to_string()),
+        };
+        unicode.push_str(&magnitude);
+        latex.push_str(&latex_number(&magnitude));
+        if !u.is_empty() {
+            unicode.push(' ');
+            unicode.push_str(&u);
+            latex.push(' ');
+            latex.push_str(&l);
+        }
+    }
+    Math::label(unicode, latex)
+}
+
+/// `1.234e-5` as `1.234 \\cdot 10^{-5}`; plain numbers as they are.
+fn latex_number(x: &str) -> String {
+    match x.split_once('e') {
+        Some((mantissa, exponent)) => format!(r"{mantissa} \cdot 10^{{{exponent}}}"),
+        None => x.to_string(),
+    }
+}
+
+/// A positive number to four significant digits, in plain notation where that is short.
+fn significant(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e4).contains(&x) {
+        let digits = (3 - x.log10().floor() as i32).clamp(0, 6) as usize;
+        format!("{x:.digits$}")
+    } else {
+        format!("{x:.3e}")
+    }
 }
 
 fn linear_lines(l: &Linearized, notation: &Notation) -> Vec<Equation> {

@@ -37,12 +37,25 @@ pub fn run(
             section.paragraph(inputs_sentence(&model, &source));
         }
     }
+    // Prepared once: the free response starts from its initial state, and the Simulation
+    // section runs it.
+    let prepared = model.simulation().map(|_| {
+        simulation::Simulation::prepare(&model, &simulation::SimulationOptions::default())
+    });
     match super::equilibria::analysis(&system, &equations) {
         Ok((rest, set, lin)) => {
+            let initial = match &prepared {
+                Some(Ok(run)) => initial_state(run, &rest.coordinates),
+                _ => None,
+            };
             document
                 .sections
                 .extend(report::solution_equilibria::equilibria_sections(
-                    &rest, &set, &lin, &notation,
+                    &rest,
+                    &set,
+                    &lin,
+                    &notation,
+                    initial.as_ref(),
                 ))
         }
         Err(why) => {
@@ -56,10 +69,10 @@ pub fn run(
         std::fs::create_dir_all(dir)
             .with_context(|| format!("cannot create the directory `{}`", dir.display()))?;
     }
-    if model.simulation().is_some() {
+    if let Some(prepared) = prepared {
         document
             .sections
-            .push(simulation_section(path, &model, out, format));
+            .push(simulation_section(path, prepared, out, format));
     }
     let mut disagree = false;
     match super::reactions::compute(path, &model, &source, &system) {
@@ -112,6 +125,26 @@ pub fn run(
     })
 }
 
+/// The simulation's initial state by `coordinates` (the rest equations' order); `None` when a
+/// coordinate is not among the simulated ones.
+fn initial_state(
+    run: &simulation::Simulation,
+    coordinates: &[String],
+) -> Option<report::solution_equilibria::InitialState> {
+    let columns = run.columns();
+    let state = run.initial_state();
+    let n = state.len() / 2;
+    let index = |q: &String| columns.iter().skip(1).take(n).position(|c| c == q);
+    let mut positions = Vec::with_capacity(coordinates.len());
+    let mut rates = Vec::with_capacity(coordinates.len());
+    for q in coordinates {
+        let k = index(q)?;
+        positions.push(*state.get(k)?);
+        rates.push(*state.get(n + k)?);
+    }
+    Some(report::solution_equilibria::InitialState { positions, rates })
+}
+
 /// The report's title: the first sentence of the model file's opening comment, else the
 /// file name.
 fn title(path: &Path, source: &str) -> String {
@@ -158,13 +191,12 @@ fn inputs_sentence(model: &model::Model, source: &str) -> String {
 /// for Markdown and the terminal, PNG for LaTeX (which `pdflatex` cannot include as SVG).
 fn simulation_section(
     path: &Path,
-    model: &model::Model,
+    prepared: Result<simulation::Simulation, simulation::SimulationError>,
     out: Option<&Path>,
     format: ReportFormat,
 ) -> Section {
     let mut section = Section::new("Simulation", 2);
-    let options = simulation::SimulationOptions::default();
-    let mut run = match simulation::Simulation::prepare(model, &options) {
+    let mut run = match prepared {
         Ok(run) => run,
         Err(error) => {
             section.paragraph(format!("Not simulated: {error}."));
