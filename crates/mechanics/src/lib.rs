@@ -42,7 +42,8 @@ pub use equations::{
 };
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{
-    reactions, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release, ReleaseKind,
+    reactions, reactions_of, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release,
+    ReleaseKind,
 };
 pub use system::{
     rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,

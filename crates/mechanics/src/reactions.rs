@@ -883,7 +883,19 @@ pub fn reactions(
         reaction: "(the constrained system)".to_string(),
         source,
     })?;
-    let motion = Motion::of(&equations)?;
+    reactions_of(system, &equations, requests)
+}
+
+/// [`reactions`] when the equations of `system` are already derived.
+///
+/// # Errors
+/// As [`reactions`].
+pub fn reactions_of(
+    system: &System,
+    equations: &Equations,
+    requests: &[ReactionRequest],
+) -> Result<Vec<Reaction>, ReactionError> {
+    let motion = Motion::of(equations)?;
     requests
         .iter()
         .map(|request| match request {
@@ -892,7 +904,7 @@ pub fn reactions(
                 if !system.constraints().iter().any(|c| &c.name == name) {
                     return Err(ReactionError::UnknownConstraint(name.clone()));
                 }
-                constraint_reaction(name, without, &equations, &motion)
+                constraint_reaction(name, without, equations, &motion)
             }
             ReactionRequest::Driven {
                 name,

@@ -29,6 +29,7 @@ pub fn compute(
     model: &model::Model,
     source: &str,
     system: &mechanics::System,
+    derived: Option<&mechanics::Equations>,
 ) -> Result<Option<Computed>, ExitCode> {
     let requests = match model::reaction_requests(model) {
         Ok(requests) => requests,
@@ -46,14 +47,26 @@ pub fn compute(
     if requests.is_empty() {
         return Ok(None);
     }
-    let reactions = match mechanics::reactions(system, &requests) {
+    // The equations of the constrained system, derived here unless the caller has them.
+    let owned;
+    let equations = match derived {
+        Some(equations) => Some(equations),
+        None => {
+            owned = mechanics::derive(system).ok();
+            owned.as_ref()
+        }
+    };
+    let found = match equations {
+        Some(equations) => mechanics::reactions_of(system, equations, &requests),
+        None => mechanics::reactions(system, &requests),
+    };
+    let reactions = match found {
         Ok(r) => r,
         Err(error) => {
             eprintln!("error: {error}");
             return Err(ExitCode::from(1));
         }
     };
-    let equations = mechanics::derive(system).ok();
     let coordinates = equations
         .as_ref()
         .map(|eq| eq.coordinates().to_vec())
@@ -88,7 +101,7 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> anyhow::Result<Exi
         coordinates,
         reactions,
         unilateral,
-    } = match compute(path, &model, &source, &system) {
+    } = match compute(path, &model, &source, &system, None) {
         Ok(Some(computed)) => computed,
         Ok(None) => {
             eprintln!(

@@ -117,7 +117,7 @@ fn one_sided_reactions(
     let Ok(system) = model::lower(model) else {
         return Ok(Vec::new());
     };
-    let Some(computed) = super::reactions::compute(path, model, source, &system)? else {
+    let Some(computed) = super::reactions::compute(path, model, source, &system, None)? else {
         return Ok(Vec::new());
     };
     Ok(computed

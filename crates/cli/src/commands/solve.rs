@@ -75,7 +75,7 @@ pub fn run(
             .push(simulation_section(path, prepared, out, format));
     }
     let mut disagree = false;
-    match super::reactions::compute(path, &model, &source, &system) {
+    match super::reactions::compute(path, &model, &source, &system, Some(&equations)) {
         Ok(Some(computed)) => {
             disagree = computed
                 .reactions
