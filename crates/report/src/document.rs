@@ -97,21 +97,7 @@ impl Math {
                 cu = format!("({cu})");
                 cl = format!(r"\left({cl}\right)");
             }
-            match (unicode.is_empty(), negative) {
-                (true, true) => {
-                    unicode.push('−');
-                    latex.push('-');
-                }
-                (true, false) => {}
-                (false, true) => {
-                    unicode.push_str(" − ");
-                    latex.push_str(" - ");
-                }
-                (false, false) => {
-                    unicode.push_str(" + ");
-                    latex.push_str(" + ");
-                }
-            }
+            push_sign(&mut unicode, &mut latex, negative);
             if cu != "1" {
                 unicode.push_str(&cu);
                 unicode.push(' ');
@@ -125,6 +111,26 @@ impl Math {
             return Math::label("0", r"\vec{0}");
         }
         Math { unicode, latex }
+    }
+}
+
+/// Appends the sign of the next term of a sum written out by hand: a leading `−` for a
+/// negative first term, ` + ` or ` − ` between terms.
+pub(crate) fn push_sign(unicode: &mut String, latex: &mut String, negative: bool) {
+    match (unicode.is_empty(), negative) {
+        (true, true) => {
+            unicode.push('−');
+            latex.push('-');
+        }
+        (true, false) => {}
+        (false, true) => {
+            unicode.push_str(" − ");
+            latex.push_str(" - ");
+        }
+        (false, false) => {
+            unicode.push_str(" + ");
+            latex.push_str(" + ");
+        }
     }
 }
 

@@ -7,7 +7,7 @@ use cas::Expr;
 use mechanics::equilibria::{EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
 
-use crate::document::{Block, Cell, Equation, Math, Notation, Section};
+use crate::document::{push_sign, Block, Cell, Equation, Math, Notation, Section};
 use crate::equilibria::{
     condition_text, free_response_waves, stability_word, LinearizedResult, Wave,
 };
@@ -312,42 +312,23 @@ fn wave_sum(parts: &[(f64, Wave)]) -> Math {
     }
     let mut unicode = String::new();
     let mut latex = String::new();
-    for (k, (c, wave)) in parts.iter().enumerate() {
+    for (c, wave) in parts {
         let magnitude = significant(c.abs());
-        match (k, *c < 0.0) {
-            (0, true) => {
-                unicode.push('−');
-                latex.push('-');
-            }
-            (0, false) => {}
-            (_, true) => {
-                unicode.push_str(" − ");
-                latex.push_str(" - ");
-            }
-            (_, false) => {
-                unicode.push_str(" + ");
-                latex.push_str(" + ");
-            }
-        }
-        let (u, l) = match wave {
-            Wave::Cos(w) => (
-                format!("cos({} t)", significant(*w)),
-                format!(r"\cos({}\, t)", significant(*w)),
+        push_sign(&mut unicode, &mut latex, *c < 0.0);
+        let function = match wave {
+            Wave::Cos(w) => Some(("cos", w)),
+            Wave::Sin(w) => Some(("sin", w)),
+            Wave::Cosh(g) => Some(("cosh", g)),
+            Wave::Sinh(g) => Some(("sinh", g)),
+            Wave::One | Wave::Time => None,
+        };
+        let (u, l) = match (function, wave) {
+            (Some((name, rate)), _) => (
+                format!("{name}({} t)", significant(*rate)),
+                format!(r"\{name}({}\, t)", significant(*rate)),
             ),
-            Wave::Sin(w) => (
-                format!("sin({} t)", significant(*w)),
-                format!(r"\sin({}\, t)", significant(*w)),
-            ),
-            Wave::Cosh(g) => (
-                format!("cosh({} t)", significant(*g)),
-                format!(r"\cosh({}\, t)", significant(*g)),
-            ),
-            Wave::Sinh(g) => (
-                format!("sinh({} t)", significant(*g)),
-                format!(r"\sinh({}\, t)", significant(*g)),
-            ),
-            Wave::One => (String::new(), String::new()),
-            Wave::Time => ("t".to_string(), "t".to_string()),
+            (None, Wave::Time) => ("t".to_string(), "t".to_string()),
+            (None, _) => (String::new(), String::new()),
         };
         unicode.push_str(&magnitude);
         latex.push_str(&latex_number(&magnitude));
