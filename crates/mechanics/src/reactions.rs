@@ -506,13 +506,7 @@ fn newton_euler(
         .iter()
         .map(|(u, d)| {
             let newton: Vector = [0, 1, 2].map(|k| momentum_rate[k] - weight[k] - applied[k]);
-            let gradient = Expr::coordinate(u)
-                .as_symbol()
-                .map_or_else(Expr::zero, |s| potential.diff(s));
-            let drag = Expr::rate(u, 1)
-                .as_symbol()
-                .map_or_else(Expr::zero, |s| dissipation.diff(s));
-            let r = (dot(&newton, d) + gradient + drag).subs(zero);
+            let r = released_balance(&newton, d, u, potential, dissipation).subs(zero);
             motion.on_motion(r)
         })
         .collect()
@@ -629,13 +623,7 @@ fn moment_equation(
         .iter()
         .map(|(psi, axis)| {
             let euler: Vector = [0, 1, 2].map(|k| inertial[k] - gravity_moment[k] - applied[k]);
-            let gradient = Expr::coordinate(psi)
-                .as_symbol()
-                .map_or_else(Expr::zero, |s| potential.diff(s));
-            let drag = Expr::rate(psi, 1)
-                .as_symbol()
-                .map_or_else(Expr::zero, |s| dissipation.diff(s));
-            motion.on_motion((dot(&euler, axis) + gradient + drag).subs(zero))
+            motion.on_motion(released_balance(&euler, axis, psi, potential, dissipation).subs(zero))
         })
         .collect()
 }
@@ -868,6 +856,25 @@ fn driving_force(
         methods: vec![Method::LagrangeI],
         agreement: Agreement::Single,
     })
+}
+
+/// A momentum (or angular-momentum) balance of the released bodies along the direction of a
+/// released coordinate, with the forces that enter through the potential and the Rayleigh
+/// function of that coordinate: what the reaction must supply.
+fn released_balance(
+    balance: &Vector,
+    direction: &Vector,
+    coordinate: &str,
+    potential: Expr,
+    dissipation: Expr,
+) -> Expr {
+    let gradient = Expr::coordinate(coordinate)
+        .as_symbol()
+        .map_or_else(Expr::zero, |s| potential.diff(s));
+    let drag = Expr::rate(coordinate, 1)
+        .as_symbol()
+        .map_or_else(Expr::zero, |s| dissipation.diff(s));
+    dot(balance, direction) + gradient + drag
 }
 
 /// The reactions asked for, on the motion of `system`.
