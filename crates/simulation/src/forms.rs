@@ -161,7 +161,11 @@ impl OdeSystem for SecondOrder<'_> {
     }
 
     fn event_count(&self) -> usize {
-        usize::from(self.compiled.events.is_some())
+        self.compiled.event_count()
+    }
+
+    fn event_stops(&self, index: usize) -> bool {
+        index < self.compiled.stopping_events
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
@@ -238,7 +242,11 @@ impl OdeSystem for Canonical<'_> {
     }
 
     fn event_count(&self) -> usize {
-        usize::from(self.compiled.events.is_some())
+        self.compiled.event_count()
+    }
+
+    fn event_stops(&self, index: usize) -> bool {
+        index < self.compiled.stopping_events
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
