@@ -52,3 +52,26 @@ fn the_particle_leaves_the_sphere_where_the_normal_force_vanishes() {
     assert!(o.status.success());
     assert_eq!(last_row(&o)[0], 2.0);
 }
+
+#[test]
+fn a_stop_when_expression_does_not_hide_the_contact_events() {
+    // Both are stop events; each is watched (once only the first one was).
+    let o = lagrange(&[
+        "simulate",
+        "examples/particle-on-sphere.lag",
+        "--t-end",
+        "5",
+        "--stop-when",
+        "t - 100",
+        "--set",
+        "theta=0.5",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("the one-sided constraint `normal` is lost"),
+        "{err}"
+    );
+    let want = (2.0 / 3.0 * 0.5f64.cos()).acos();
+    assert!((last_row(&o)[1] - want).abs() < 1e-6);
+}

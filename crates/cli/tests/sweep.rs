@@ -129,3 +129,55 @@ fn a_bifurcation_diagram_is_drawn_for_a_sweep() {
     ]);
     assert!(!o.status.success());
 }
+
+#[test]
+fn sweep_runs_stop_where_a_contact_is_lost_like_single_runs() {
+    // The particle leaves the sphere where cos θ = ⅔ cos θ₀.
+    let o = lagrange(&[
+        "simulate",
+        "examples/particle-on-sphere.lag",
+        "--t-end",
+        "5",
+        "--rtol",
+        "1e-10",
+        "--atol",
+        "1e-12",
+        "--sweep",
+        "theta=0.1..0.5",
+        "--steps",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = rows(&o);
+    let outcome = table[0]
+        .iter()
+        .position(|c| c == "outcome")
+        .expect("outcome");
+    assert_eq!(table.len(), 4, "a header and 3 runs");
+    for (k, row) in table[1..].iter().enumerate() {
+        assert_eq!(row[outcome], "\"contact lost: normal\"", "run {k}");
+        // The grid's value as the sweep wrote it (0.30000000000000004, not 0.3).
+        let value = &row[1];
+        let theta0: f64 = value.parse().expect("a number");
+        let theta: f64 = row[3].parse().expect("a number");
+        let want = (2.0 / 3.0 * theta0.cos()).acos();
+        assert!(
+            (theta - want).abs() < 1e-7,
+            "run {k}: θ = {theta} vs {want}"
+        );
+        let single = lagrange(&[
+            "simulate",
+            "examples/particle-on-sphere.lag",
+            "--t-end",
+            "5",
+            "--rtol",
+            "1e-10",
+            "--atol",
+            "1e-12",
+            "--set",
+            &format!("theta={value}"),
+        ]);
+        let last = rows(&single).pop().expect("rows");
+        assert_eq!(row[2..2 + last.len()], last[..], "run {k}");
+    }
+}

@@ -11,7 +11,8 @@ pub mod roots;
 mod tape;
 
 pub use integrate::{
-    integrate, Failure, IntegratorOptions, Method, OdeSystem, Outcome, RhsError, Stats, StopReason,
+    integrate, integrate_with_crossings, Crossing, Failure, IntegratorOptions, Method, OdeSystem,
+    Outcome, RhsError, Stats, StopReason,
 };
 pub use linalg::{cholesky_solve_in_place, solve_in_place, LinearError};
 pub use tape::{Tape, TapeError};

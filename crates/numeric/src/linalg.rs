@@ -63,13 +63,16 @@ pub fn solve_in_place(n: usize, a: &mut [f64], b: &mut [f64]) -> Result<(), Line
     Ok(())
 }
 
-/// Solves `A x = b` for symmetric positive definite `A` (row-major `n×n`, overwritten by its
-/// Cholesky factor `L` in the lower triangle, with `1/L_jj` on the diagonal) — a mass matrix: half the work of LU and no
-/// pivot search. `b` is overwritten by `x`.
+/// Solves `A x = b` for symmetric positive definite `A` (row-major `n×n`, its lower triangle
+/// overwritten by the unit lower factor `L` of `A = L D Lᵀ`, with `1/D_ii` on the diagonal) —
+/// a mass matrix: half the work of LU and no pivot search. `b` is overwritten by `x`.
+///
+/// The square-root-free form of Cholesky: one division per row and no square root, which
+/// for the small matrices of mechanics is most of the time on the critical path.
 ///
 /// # Errors
-/// [`LinearError::Singular`] when a pivot is not positive (relative to the diagonal's scale):
-/// the matrix is singular or not positive definite there; the caller may fall back to
+/// [`LinearError::Singular`] when a pivot `D_ii` is not positive (relative to the diagonal's
+/// scale): the matrix is singular or not positive definite there; the caller may fall back to
 /// [`solve_in_place`] on a fresh copy.
 pub fn cholesky_solve_in_place(n: usize, a: &mut [f64], b: &mut [f64]) -> Result<(), LinearError> {
     debug_assert!(a.len() >= n * n && b.len() >= n);
@@ -78,28 +81,33 @@ pub fn cholesky_solve_in_place(n: usize, a: &mut [f64], b: &mut [f64]) -> Result
     let dot = |x: &[f64], y: &[f64]| -> f64 { x.iter().zip(y).map(|(p, q)| p * q).sum() };
     let a = &mut a[..n * n];
     let b = &mut b[..n];
-    // The diagonal keeps 1/L_jj: divisions cost as much as the rest of a small solve. Rows are
-    // walked as slices so that the inner products run without bounds checks.
-    for j in 0..n {
-        let (row_j, below) = a[j * n..].split_at_mut(n);
-        let d = row_j[j] - dot(&row_j[..j], &row_j[..j]);
+    // Row by row: row i first holds W_ik = L_ik D_k (k < i), from the rows above (already L),
+    // then D_i = A_ii − Σ W_ik L_ik, and W becomes L. Rows are walked as slices so that the
+    // inner products run without bounds checks.
+    for i in 0..n {
+        let (above, rest) = a.split_at_mut(i * n);
+        let row_i = &mut rest[..n];
+        for (j, row_j) in above.chunks_exact(n).enumerate() {
+            row_i[j] -= dot(&row_i[..j], &row_j[..j]);
+        }
+        let mut d = row_i[i];
+        for (k, row_k) in above.chunks_exact(n).enumerate() {
+            let w = row_i[k];
+            let l = w * row_k[k];
+            d -= w * l;
+            row_i[k] = l;
+        }
         if d.is_nan() || d <= tiny || d.is_infinite() {
-            return Err(LinearError::Singular { column: j });
+            return Err(LinearError::Singular { column: i });
         }
-        let inverse = 1.0 / d.sqrt();
-        row_j[j] = inverse;
-        for row_i in below.chunks_exact_mut(n) {
-            let s = row_i[j] - dot(&row_i[..j], &row_j[..j]);
-            row_i[j] = s * inverse;
-        }
+        row_i[i] = 1.0 / d;
     }
     for (i, row) in a.chunks_exact(n).enumerate() {
-        let s = b[i] - dot(&row[..i], &b[..i]);
-        b[i] = s * row[i];
+        b[i] -= dot(&row[..i], &b[..i]);
     }
     for i in (0..n).rev() {
-        let s = b[i] - (i + 1..n).map(|k| a[k * n + i] * b[k]).sum::<f64>();
-        b[i] = s * a[i * n + i];
+        let s = b[i] * a[i * n + i] - (i + 1..n).map(|k| a[k * n + i] * b[k]).sum::<f64>();
+        b[i] = s;
     }
     Ok(())
 }

@@ -8,11 +8,14 @@
 //! [`Tape::eval`] runs the instructions in order over a caller-owned register buffer, so an
 //! evaluation allocates nothing.
 //!
-//! Sums and products of many operands are folded left to right into binary instructions;
-//! integer powers become repeated multiplication (`powi`), `x^(1/2)` becomes `sqrt`.
+//! A sum is factored greedily (the factor most of its terms share is taken out, recursively)
+//! and becomes one `Dot` instruction `Σ aᵢ·bᵢ` over a table of operand pairs, accumulated in
+//! machine registers; `sin x` and `cos x` of the same `x` come from one `sincos` call.
+//! Products are folded left to right into binary instructions; integer powers become
+//! repeated multiplication (`powi`), `x^(1/2)` becomes `sqrt`.
 
 use cas::{Constant, Expr, Func, Node, Symbol};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Why a set of expressions could not be compiled.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -30,15 +33,8 @@ pub enum TapeError {
 /// `first_computed + k`) from earlier registers.
 #[derive(Clone, Copy, Debug)]
 enum Op {
-    /// `acc + a·b` in one instruction: the shape of every term of an expanded sum.
-    MulAdd(u32, u32, u32),
-    /// `acc − a·b`.
-    MulSub(u32, u32, u32),
-    Add(u32, u32),
-    Sub(u32, u32),
     Mul(u32, u32),
     Div(u32, u32),
-    Neg(u32),
     Recip(u32),
     Square(u32),
     Powi(u32, i32),
@@ -46,6 +42,17 @@ enum Op {
     Sqrt(u32),
     Unary(Func, u32),
     Atan2(u32, u32),
+    /// `sin a` into this instruction's register and `cos a` into the next one's (whose
+    /// instruction is [`Op::CosOfPrevious`]): one call instead of two, the argument
+    /// reduction shared.
+    SinCos(u32),
+    /// Written by the [`Op::SinCos`] before it; does nothing.
+    CosOfPrevious,
+    /// `Σ a·b` over the operand pairs `pairs[start .. start + len]`: a whole sum in one
+    /// instruction, accumulated in machine registers instead of through the register buffer
+    /// term by term (each term of a chain of multiply-adds waited for the previous one's
+    /// store).
+    Dot(u32, u32),
 }
 
 /// A compiled set of scalar expressions with numbered inputs. Invariant: every operand index
@@ -56,6 +63,8 @@ pub struct Tape {
     input_count: usize,
     constants: Vec<f64>,
     ops: Vec<Op>,
+    /// The operand pairs of the [`Op::Dot`] instructions.
+    pairs: Vec<(u32, u32)>,
     outputs: Vec<u32>,
 }
 
@@ -64,7 +73,11 @@ struct Compiler<'a> {
     constants: Vec<f64>,
     constant_slots: FxHashMap<u64, u32>,
     ops: Vec<Op>,
+    /// The operand pairs of [`Op::Dot`], as encoded slots.
+    pairs: Vec<(u32, u32)>,
     memo: FxHashMap<Expr, Slot>,
+    /// The arguments whose sine and cosine both occur: computed by one [`Op::SinCos`].
+    sine_and_cosine: FxHashSet<Expr>,
 }
 
 /// Where a value lives while compiling: constants get their final register only once the
@@ -93,7 +106,9 @@ impl Tape {
             constants: Vec::new(),
             constant_slots: FxHashMap::default(),
             ops: Vec::new(),
+            pairs: Vec::new(),
             memo: FxHashMap::default(),
+            sine_and_cosine: sine_and_cosine_arguments(outputs),
         };
         let slots = outputs
             .iter()
@@ -115,10 +130,16 @@ impl Tape {
             .iter()
             .map(|op| map_operands(*op, |r| place(decode(r))))
             .collect();
+        let pairs = compiler
+            .pairs
+            .iter()
+            .map(|&(a, b)| (place(decode(a)), place(decode(b))))
+            .collect();
         let tape = Tape {
             input_count,
             constants: compiler.constants,
             ops,
+            pairs,
             outputs: slots.into_iter().map(place).collect(),
         };
         // The invariant `eval` relies on to skip bounds checks; it holds by construction
@@ -140,6 +161,17 @@ impl Tape {
                 ok &= r < limit;
                 r
             });
+            if let Op::Dot(start, len) = *op {
+                let (start, len) = (start as usize, len as usize);
+                ok &= start
+                    .checked_add(len)
+                    .and_then(|end| self.pairs.get(start..end))
+                    .is_some_and(|pairs| pairs.iter().all(|&(a, b)| a < limit && b < limit));
+            }
+            // A SinCos writes the next register too, which must be its CosOfPrevious.
+            if let Op::SinCos(_) = op {
+                ok &= matches!(self.ops.get(k + 1), Some(Op::CosOfPrevious));
+            }
             ok
         });
         let register_count = self.register_count() as u32;
@@ -203,13 +235,8 @@ impl Tape {
             // Bounds checks here cost about a third of the evaluation time.
             let r = |i: u32| unsafe { *registers.get_unchecked(i as usize) };
             let value = match *op {
-                Op::MulAdd(acc, a, b) => r(acc) + r(a) * r(b),
-                Op::MulSub(acc, a, b) => r(acc) - r(a) * r(b),
-                Op::Add(a, b) => r(a) + r(b),
-                Op::Sub(a, b) => r(a) - r(b),
                 Op::Mul(a, b) => r(a) * r(b),
                 Op::Div(a, b) => r(a) / r(b),
-                Op::Neg(a) => -r(a),
                 Op::Recip(a) => 1.0 / r(a),
                 Op::Square(a) => {
                     let x = r(a);
@@ -220,6 +247,35 @@ impl Tape {
                 Op::Sqrt(a) => r(a).sqrt(),
                 Op::Atan2(y, x) => r(y).atan2(r(x)),
                 Op::Unary(f, a) => unary(f, r(a)),
+                Op::SinCos(a) => {
+                    let (sin, cos) = sin_cos(r(a));
+                    // SAFETY: compile emits every SinCos followed by its CosOfPrevious, so
+                    // first + k + 1 is a register of this tape.
+                    unsafe {
+                        *registers.get_unchecked_mut(first + k + 1) = cos;
+                    }
+                    sin
+                }
+                Op::CosOfPrevious => continue,
+                Op::Dot(start, len) => {
+                    // SAFETY: compile checked that start + len is within `pairs` and that
+                    // every register of these pairs is below first + k.
+                    let pairs = unsafe {
+                        self.pairs
+                            .get_unchecked(start as usize..start as usize + len as usize)
+                    };
+                    // Two accumulators: consecutive terms do not wait for each other.
+                    let (mut even, mut odd) = (0.0, 0.0);
+                    let mut chunks = pairs.chunks_exact(2);
+                    for chunk in &mut chunks {
+                        even += r(chunk[0].0) * r(chunk[0].1);
+                        odd += r(chunk[1].0) * r(chunk[1].1);
+                    }
+                    if let [(a, b)] = chunks.remainder() {
+                        even += r(*a) * r(*b);
+                    }
+                    even + odd
+                }
             };
             // SAFETY: first + k < register_count = registers.len() (asserted above).
             unsafe {
@@ -273,13 +329,8 @@ fn decode(r: u32) -> Slot {
 
 fn map_operands(op: Op, mut f: impl FnMut(u32) -> u32) -> Op {
     match op {
-        Op::MulAdd(acc, a, b) => Op::MulAdd(f(acc), f(a), f(b)),
-        Op::MulSub(acc, a, b) => Op::MulSub(f(acc), f(a), f(b)),
-        Op::Add(a, b) => Op::Add(f(a), f(b)),
-        Op::Sub(a, b) => Op::Sub(f(a), f(b)),
         Op::Mul(a, b) => Op::Mul(f(a), f(b)),
         Op::Div(a, b) => Op::Div(f(a), f(b)),
-        Op::Neg(a) => Op::Neg(f(a)),
         Op::Recip(a) => Op::Recip(f(a)),
         Op::Square(a) => Op::Square(f(a)),
         Op::Powi(a, n) => Op::Powi(f(a), n),
@@ -287,7 +338,53 @@ fn map_operands(op: Op, mut f: impl FnMut(u32) -> u32) -> Op {
         Op::Sqrt(a) => Op::Sqrt(f(a)),
         Op::Unary(g, a) => Op::Unary(g, f(a)),
         Op::Atan2(a, b) => Op::Atan2(f(a), f(b)),
+        Op::SinCos(a) => Op::SinCos(f(a)),
+        Op::CosOfPrevious => Op::CosOfPrevious,
+        // Its operands are in the pair table, checked and mapped apart.
+        Op::Dot(start, len) => Op::Dot(start, len),
     }
+}
+
+/// Every argument `x` of which both `sin x` and `cos x` occur among the outputs.
+fn sine_and_cosine_arguments(outputs: &[Expr]) -> FxHashSet<Expr> {
+    let mut seen: FxHashSet<Expr> = FxHashSet::default();
+    let mut sines: FxHashSet<Expr> = FxHashSet::default();
+    let mut cosines: FxHashSet<Expr> = FxHashSet::default();
+    let mut stack: Vec<Expr> = outputs.to_vec();
+    while let Some(e) = stack.pop() {
+        if !seen.insert(e) {
+            continue;
+        }
+        match e.node() {
+            Node::Func(Func::Sin, args) if args.len() == 1 => {
+                sines.insert(args[0]);
+            }
+            Node::Func(Func::Cos, args) if args.len() == 1 => {
+                cosines.insert(args[0]);
+            }
+            _ => {}
+        }
+        stack.extend_from_slice(e.children());
+    }
+    sines.intersection(&cosines).copied().collect()
+}
+
+/// `(sin x, cos x)`: glibc's `sincos` where there is one (it shares the argument reduction
+/// and much of the polynomial work), else the two functions.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn sin_cos(x: f64) -> (f64, f64) {
+    extern "C" {
+        fn sincos(x: f64, sin: *mut f64, cos: *mut f64);
+    }
+    let (mut sin, mut cos) = (0.0, 0.0);
+    // SAFETY: glibc's sincos writes one f64 through each pointer, both valid and distinct.
+    unsafe { sincos(x, &mut sin, &mut cos) };
+    (sin, cos)
+}
+
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+fn sin_cos(x: f64) -> (f64, f64) {
+    x.sin_cos()
 }
 
 impl Compiler<'_> {
@@ -335,6 +432,20 @@ impl Compiler<'_> {
                 let (y, x) = (self.slot(args[0])?, self.slot(args[1])?);
                 self.emit(|c| Op::Atan2(c(y), c(x)))
             }
+            Node::Func(Func::Sin | Func::Cos, args)
+                if args.len() == 1 && self.sine_and_cosine.contains(&args[0]) =>
+            {
+                let a = self.slot(args[0])?;
+                let sin = self.emit(|c| Op::SinCos(c(a)));
+                let cos = self.emit(|_| Op::CosOfPrevious);
+                self.memo.insert(args[0].sin(), sin);
+                self.memo.insert(args[0].cos(), cos);
+                return Ok(if matches!(e.node(), Node::Func(Func::Sin, _)) {
+                    sin
+                } else {
+                    cos
+                });
+            }
             Node::Func(f, args) if args.len() == 1 => {
                 let a = self.slot(args[0])?;
                 let f = *f;
@@ -346,58 +457,106 @@ impl Compiler<'_> {
         Ok(s)
     }
 
-    /// A sum; terms of the form `−1·x` are subtracted rather than negated then added.
+    /// A sum, factored greedily (multivariate Horner): the factor shared by the most terms
+    /// is taken out, `rest + f·(Σ terms with f, f removed)`, recursively. The expanded forms
+    /// of mechanics repeat `sin θᵢ`, `cos θᵢ`, `θ̇ⱼ²` across many terms of one sum, so this
+    /// halves the instructions of the n-link pendulum's forcing, and the factored products
+    /// (`θ̇ⱼ² cos θⱼ`) are shared between outputs.
     fn sum(&mut self, terms: &[Expr]) -> Result<Slot, TapeError> {
-        let mut acc: Option<Slot> = None;
-        for &term in terms {
-            let (negative, magnitude) = split_sign(term);
-            if let (Some(a), Some((left, right))) = (acc, self.split_product(magnitude)?) {
-                acc = Some(if negative {
-                    self.emit(|c| Op::MulSub(c(a), c(left), c(right)))
-                } else {
-                    self.emit(|c| Op::MulAdd(c(a), c(left), c(right)))
-                });
-                continue;
-            }
-            let value = self.slot(magnitude)?;
-            acc = Some(match (acc, negative) {
-                (None, false) => value,
-                (None, true) => self.emit(|c| Op::Neg(c(value))),
-                (Some(a), false) => self.emit(|c| Op::Add(c(a), c(value))),
-                (Some(a), true) => self.emit(|c| Op::Sub(c(a), c(value))),
-            });
-        }
-        Ok(match acc {
-            Some(s) => s,
-            None => self.constant(0.0),
-        })
+        let terms = terms
+            .iter()
+            .map(|&term| {
+                let (negative, magnitude) = split_sign(term);
+                let factors = match magnitude.node() {
+                    Node::Mul(factors) => factors.to_vec(),
+                    _ => vec![magnitude],
+                };
+                Term { negative, factors }
+            })
+            .collect();
+        self.factored_sum(terms)
     }
 
-    /// A product term `c·x·y⋯` of a sum as two operands for a fused multiply-add: the
-    /// coefficient and the monomial (which other terms and outputs may share), or the monomial
-    /// without its last factor and that factor. `None` for anything else, and for products
-    /// with a divisor (those compile as a division).
-    fn split_product(&mut self, term: Expr) -> Result<Option<(Slot, Slot)>, TapeError> {
-        let Node::Mul(factors) = term.node() else {
-            return Ok(None);
-        };
-        let divides = factors.iter().any(|f| match f.node() {
-            Node::Pow([_, e]) => e.as_number().is_some_and(|n| n.to_f64() < 0.0),
-            _ => false,
-        });
-        if divides || factors.len() < 2 {
-            return Ok(None);
+    fn factored_sum(&mut self, terms: Vec<Term>) -> Result<Slot, TapeError> {
+        let pairs = self.sum_pairs(terms)?;
+        Ok(self.dot(&pairs))
+    }
+
+    /// The sum as operand pairs `Σ a·b`, with shared factors taken out: `rest + f·inner`
+    /// is `rest`'s pairs and `(f, inner)`.
+    fn sum_pairs(&mut self, terms: Vec<Term>) -> Result<Vec<(Slot, Slot)>, TapeError> {
+        if let Some(shared) = most_shared_factor(&terms) {
+            let (mut with, without): (Vec<Term>, Vec<Term>) =
+                terms.into_iter().partition(|t| t.factors.contains(&shared));
+            for term in &mut with {
+                if let Some(k) = term.factors.iter().position(|f| *f == shared) {
+                    term.factors.remove(k);
+                }
+            }
+            let factor = self.slot(shared)?;
+            let inner = self.factored_sum(with)?;
+            let mut pairs = self.sum_pairs(without)?;
+            pairs.push((factor, inner));
+            return Ok(pairs);
         }
-        let (left, right) = if factors[0].as_number().is_some() {
-            (factors[0], Expr::mul_all(factors[1..].iter().copied()))
-        } else {
+        let mut pairs = Vec::with_capacity(terms.len());
+        for term in terms {
+            pairs.push(self.term_pair(&term)?);
+        }
+        Ok(pairs)
+    }
+
+    /// A term as `a·b`: its coefficient (the sign folded in) and its monomial, or the
+    /// monomial without its last factor and that factor, or the term and ±1.
+    fn term_pair(&mut self, term: &Term) -> Result<(Slot, Slot), TapeError> {
+        let factors = &term.factors;
+        if let Some(n) = factors.first().and_then(|f| f.as_number()) {
+            if factors.len() >= 2 && !divides(factors) {
+                let value = if term.negative {
+                    -n.to_f64()
+                } else {
+                    n.to_f64()
+                };
+                let coefficient = self.constant(value);
+                let monomial = self.slot(Expr::mul_all(factors[1..].iter().copied()))?;
+                return Ok((coefficient, monomial));
+            }
+        }
+        if factors.len() >= 2 && !term.negative && !divides(factors) {
             let last = factors.len() - 1;
-            (
-                Expr::mul_all(factors[..last].iter().copied()),
-                factors[last],
-            )
-        };
-        Ok(Some((self.slot(left)?, self.slot(right)?)))
+            let left = self.slot(Expr::mul_all(factors[..last].iter().copied()))?;
+            let right = self.slot(factors[last])?;
+            return Ok((left, right));
+        }
+        let value = self.slot(Expr::mul_all(factors.iter().copied()))?;
+        let sign = self.constant(if term.negative { -1.0 } else { 1.0 });
+        Ok((sign, value))
+    }
+
+    /// `Σ a·b` as one instruction; a single pair as a product (or as `a` itself when `b` is
+    /// the constant 1), none as 0.
+    fn dot(&mut self, pairs: &[(Slot, Slot)]) -> Slot {
+        match pairs {
+            [] => self.constant(0.0),
+            [(a, b)] => {
+                let (a, b) = (*a, *b);
+                let one = self.constant(1.0);
+                if a == one {
+                    b
+                } else if b == one {
+                    a
+                } else {
+                    self.emit(|c| Op::Mul(c(a), c(b)))
+                }
+            }
+            _ => {
+                let start = self.pairs.len() as u32;
+                self.pairs
+                    .extend(pairs.iter().map(|&(a, b)| (encode(a), encode(b))));
+                let len = pairs.len() as u32;
+                self.emit(|_| Op::Dot(start, len))
+            }
+        }
     }
 
     /// A product; factors `x^(−k)` divide rather than multiply by a reciprocal.
@@ -475,6 +634,46 @@ impl Compiler<'_> {
     }
 }
 
+/// Whether a product has a divisor (`x^(−k)`): it then compiles as a division.
+fn divides(factors: &[Expr]) -> bool {
+    factors.iter().any(|f| match f.node() {
+        Node::Pow([_, e]) => e.as_number().is_some_and(|n| n.to_f64() < 0.0),
+        _ => false,
+    })
+}
+
+/// A term of a sum being factored: its sign and its factors (a number first, if any).
+struct Term {
+    negative: bool,
+    factors: Vec<Expr>,
+}
+
+/// The non-numeric factor that the most terms (at least two) have, the earliest on a tie so
+/// that compiling is deterministic.
+fn most_shared_factor(terms: &[Term]) -> Option<Expr> {
+    if terms.len() < 2 {
+        return None;
+    }
+    let mut counts: FxHashMap<Expr, (usize, usize)> = FxHashMap::default();
+    let mut order = 0;
+    for term in terms {
+        for (k, factor) in term.factors.iter().enumerate() {
+            // Counted once per term, even when a factor repeats.
+            if factor.as_number().is_some() || term.factors[..k].contains(factor) {
+                continue;
+            }
+            let entry = counts.entry(*factor).or_insert((0, order));
+            entry.0 += 1;
+            order += 1;
+        }
+    }
+    counts
+        .into_iter()
+        .filter(|(_, (count, _))| *count >= 2)
+        .max_by(|a, b| a.1 .0.cmp(&b.1 .0).then(b.1 .1.cmp(&a.1 .1)))
+        .map(|(factor, _)| factor)
+}
+
 /// `(true, x)` for a term `−x` (a product whose number is −1, or a negative number's
 /// magnitude), so sums subtract instead of negating.
 fn split_sign(term: Expr) -> (bool, Expr) {
@@ -546,6 +745,45 @@ mod tests {
         let tape = Tape::compile(&outputs, &symbols(&["x"])).unwrap();
         // sin x once, then 2·s, 3·s, s²: four instructions.
         assert_eq!(tape.instruction_count(), 4);
+    }
+
+    #[test]
+    fn sums_are_factored_and_sine_and_cosine_share_one_call() {
+        let (x, y, a, b) = (
+            Expr::symbol("x"),
+            Expr::symbol("y"),
+            Expr::symbol("a"),
+            Expr::symbol("b"),
+        );
+        let (s, c) = (x.sin(), x.cos());
+        // s·(a·y + b·y² + 3) + c·(2a − b): expanded, six terms.
+        let expanded = (s * a * y + s * b * y.powi(2) + s * 3 + c * a * 2 - c * b + y * 5).normal();
+        let outputs = [expanded, s * c];
+        let tape = Tape::compile(&outputs, &symbols(&["x", "y", "a", "b"])).unwrap();
+        // sincos (2 registers), y², the two inner sums, b·y², a·y, the outer sum, s·c; the
+        // expanded form needs a product per term besides.
+        assert!(
+            tape.instruction_count() <= 8,
+            "{} instructions: {:?}",
+            tape.instruction_count(),
+            tape.ops
+        );
+        assert_eq!(
+            tape.ops
+                .iter()
+                .filter(|op| matches!(op, Op::SinCos(_)))
+                .count(),
+            1
+        );
+        let mut registers = tape.registers();
+        let mut out = [0.0; 2];
+        let point = [0.7, -1.3, 0.4, 2.5];
+        tape.eval(&point, &mut registers, &mut out);
+        let [xv, yv, av, bv] = point;
+        let want =
+            xv.sin() * (av * yv + bv * yv * yv + 3.0) + xv.cos() * (2.0 * av - bv) + 5.0 * yv;
+        assert!((out[0] - want).abs() < 1e-14, "{} vs {want}", out[0]);
+        assert!((out[1] - xv.sin() * xv.cos()).abs() < 1e-15);
     }
 
     #[test]

@@ -5,7 +5,8 @@
 //! * dynamics — `M` (row-major), `f`, `A`, `b`: every right-hand side evaluation;
 //! * monitor — energy, `Φ` of the holonomic rows, `c` of every row: at outputs and projections;
 //! * canonical — `M`, `p₀ = ∂L/∂q̇|_{q̇=0}` and `∂L/∂q + Q`: only for the symplectic method;
-//! * events — the `--stop-when` expressions.
+//! * events — the stop events (`--stop-when`, lost contacts), then the recorded ones
+//!   (`--record-when`).
 
 use cas::{Expr, Symbol};
 use mechanics::{ConstraintForm, Equations, System};
@@ -52,6 +53,8 @@ pub(crate) struct Compiled {
     pub(crate) monitor: Evaluator,
     pub(crate) canonical: Option<(Evaluator, Evaluator)>,
     pub(crate) events: Option<Evaluator>,
+    /// How many of the events (the first ones) stop the run; the others are recorded.
+    pub(crate) stopping_events: usize,
     /// The input buffer, with the parameters' values in place.
     pub(crate) inputs: Vec<f64>,
     /// Whether the drift of every constraint row is known at position or velocity level.
@@ -60,12 +63,14 @@ pub(crate) struct Compiled {
 
 impl Compiled {
     /// Compiles the equations. `parameters` are the values of every symbol that is not a
-    /// coordinate, a rate or time; `events` are expressions of the same symbols.
+    /// coordinate, a rate or time; `events` are expressions of the same symbols, of which the
+    /// first `stopping_events` stop the run and the others are recorded.
     pub(crate) fn new(
         system: &System,
         equations: &Equations,
         parameters: &[(String, f64)],
         events: &[Expr],
+        stopping_events: usize,
         canonical: bool,
     ) -> Result<Compiled, TapeError> {
         let names = equations.coordinates();
@@ -173,9 +178,15 @@ impl Compiled {
             monitor,
             canonical,
             events,
+            stopping_events,
             inputs: values,
             drift_known,
         })
+    }
+
+    /// How many event functions there are (each output of the events tape is one).
+    pub(crate) fn event_count(&self) -> usize {
+        self.events.as_ref().map_or(0, |e| e.tape.output_count())
     }
 
     /// Puts `(q, q̇, t)` into the input buffer.

@@ -88,12 +88,18 @@ impl OdeSystem for SecondOrder<'_> {
         let (mass, rest) = out.split_at(n * n);
         let (forcing, rest) = rest.split_at(n);
         let (a, b) = rest.split_at(m * n);
-        for i in 0..n {
-            self.matrix[i * size..i * size + n].copy_from_slice(&mass[i * n..(i + 1) * n]);
-            for k in 0..m {
-                self.matrix[i * size + n + k] = a[k * n + i];
+        if m == 0 {
+            // The same layout: one copy rather than one per row.
+            self.matrix.copy_from_slice(mass);
+            self.vector.copy_from_slice(forcing);
+        } else {
+            for i in 0..n {
+                self.matrix[i * size..i * size + n].copy_from_slice(&mass[i * n..(i + 1) * n]);
+                for k in 0..m {
+                    self.matrix[i * size + n + k] = a[k * n + i];
+                }
+                self.vector[i] = forcing[i];
             }
-            self.vector[i] = forcing[i];
         }
         for k in 0..m {
             let row = (n + k) * size;
@@ -161,7 +167,11 @@ impl OdeSystem for SecondOrder<'_> {
     }
 
     fn event_count(&self) -> usize {
-        usize::from(self.compiled.events.is_some())
+        self.compiled.event_count()
+    }
+
+    fn event_stops(&self, index: usize) -> bool {
+        index < self.compiled.stopping_events
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
@@ -238,7 +248,11 @@ impl OdeSystem for Canonical<'_> {
     }
 
     fn event_count(&self) -> usize {
-        usize::from(self.compiled.events.is_some())
+        self.compiled.event_count()
+    }
+
+    fn event_stops(&self, index: usize) -> bool {
+        index < self.compiled.stopping_events
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {

@@ -20,4 +20,4 @@ mod compiled;
 mod forms;
 mod run;
 
-pub use run::{MethodName, Simulation, SimulationError, SimulationOptions};
+pub use run::{MethodName, RecordedCrossing, Simulation, SimulationError, SimulationOptions};

@@ -5,7 +5,12 @@ use std::fmt;
 
 use cas::ParseContext;
 use model::Model;
-use numeric::{integrate, IntegratorOptions, Method, OdeSystem, Outcome, RhsError, TapeError};
+use std::cell::RefCell;
+
+use numeric::{
+    integrate_with_crossings, Crossing, IntegratorOptions, Method, OdeSystem, Outcome, RhsError,
+    TapeError,
+};
 
 use crate::compiled::Compiled;
 use crate::forms::{Canonical, SecondOrder};
@@ -68,6 +73,21 @@ pub struct SimulationOptions {
     /// where they cross zero (a one-sided reaction — a contact's normal force, a rope's
     /// tension — whose sign change means the constraint is lost).
     pub stop_events: Vec<cas::Expr>,
+    /// Record (without stopping) every crossing of zero of these expressions of `t`, `q`,
+    /// `q_d` and the parameters: [`Simulation::run_recording`] reports each with its
+    /// direction, time and state.
+    pub record_when: Vec<String>,
+}
+
+/// A recorded zero crossing of a `record_when` expression.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RecordedCrossing<'a> {
+    /// Which `record_when` expression (its index in [`SimulationOptions::record_when`]).
+    pub event: usize,
+    /// From negative to positive (else from positive to negative).
+    pub rising: bool,
+    /// The state there as an output row (see [`Simulation::columns`]).
+    pub row: &'a [f64],
 }
 
 /// What stops a simulation before it starts.
@@ -106,9 +126,12 @@ pub enum SimulationError {
         /// The coordinate (with `'` for its rate).
         coordinate: String,
     },
-    /// The `--stop-when` expression does not parse.
+    /// The `--stop-when` expression does not parse, or names something unknown.
     #[error("--stop-when: {0}")]
     StopWhen(String),
+    /// A `--record-when` expression does not parse, or names something unknown.
+    #[error("--record-when: {0}")]
+    RecordWhen(String),
     /// The symplectic method needs an unconstrained system.
     #[error("gauss integrates Hamilton's equations and does not handle constraints kept with multipliers ({constraints}); use dopri5")]
     GaussWithConstraints {
@@ -208,26 +231,23 @@ impl Simulation {
                 constraints: equations.constraint_names().join(", "),
             });
         }
-        let events = match &options.stop_when {
-            Some(text) => {
-                let context = coordinates
-                    .iter()
-                    .fold(ParseContext::new(), |c, q| c.with_coordinate(q));
-                vec![cas::parse(text, &context)
-                    .map_err(|e| SimulationError::StopWhen(e.to_string()))?]
-            }
-            None => Vec::new(),
-        };
-        let events: Vec<cas::Expr> = events
-            .into_iter()
-            .chain(options.stop_events.iter().copied())
-            .collect();
         let parameters = model.numeric_values();
+        let known = EventNames::new(&coordinates, &parameters);
+        let mut events = Vec::new();
+        if let Some(text) = &options.stop_when {
+            events.push(known.parse(text).map_err(SimulationError::StopWhen)?);
+        }
+        events.extend(options.stop_events.iter().copied());
+        let stopping_events = events.len();
+        for text in &options.record_when {
+            events.push(known.parse(text).map_err(SimulationError::RecordWhen)?);
+        }
         let mut compiled = Compiled::new(
             &system,
             &equations,
             &parameters,
             &events,
+            stopping_events,
             method == MethodName::Gauss,
         )
         .map_err(SimulationError::MissingValue)?;
@@ -326,56 +346,38 @@ impl Simulation {
         body(&mut system)
     }
 
+    /// The integrator's settings: tolerances, step, output step.
+    #[must_use]
+    pub fn integrator_options(&self) -> IntegratorOptions {
+        self.options
+    }
+
     /// Runs the simulation, handing each output row (see [`Simulation::columns`]) to
     /// `on_row`. With constraints, each written state is projected onto them (positions, then
-    /// velocities), as the integrator's step ends are. The energy error is `(E − E₀)/|E₀|`, or `E − E₀` when `|E₀| < 1e-12`.
+    /// velocities), as the integrator's step ends are. The energy error is `(E − E₀)/|E₀|`, or
+    /// `E − E₀` when `|E₀| < 1e-12`.
     pub fn run(&mut self, on_row: &mut dyn FnMut(&[f64])) -> Outcome {
+        self.run_recording(on_row, &mut |_| {})
+    }
+
+    /// [`Simulation::run`], also handing every zero crossing of a `record_when` expression
+    /// to `on_crossing`, in time order, with the state there as a row like the output rows.
+    pub fn run_recording(
+        &mut self,
+        on_row: &mut dyn FnMut(&[f64]),
+        on_crossing: &mut dyn FnMut(RecordedCrossing<'_>),
+    ) -> Outcome {
         let n = self.coordinates.len();
         let method = self.method;
         let (t0, t1, options) = (self.t_start, self.t_end, self.options);
-        let energy0 = self.initial_energy;
-        let scale = if energy0.abs() < 1e-12 {
-            1.0
-        } else {
-            energy0.abs()
-        };
-        let mut row = vec![0.0; 2 * n + 3];
-        // The observer needs the compiled equations too (energy, drift, and for the canonical
-        // form the rates); a clone keeps it apart from the integrated system.
-        let mut monitor = self.compiled.clone();
-        let constrained = self.compiled.m > 0;
-        let mut projected = vec![0.0; 2 * n];
-        let mut emit = |t: f64, q: &[f64], qd: &[f64]| {
-            // Outputs between steps come from the dense output, which leaves the constraint
-            // manifold by about the local error; the written state is projected back like the
-            // step ends (when that fails, the state is written as it is and its drift shows).
-            let (q, qd) = if constrained {
-                projected[..n].copy_from_slice(q);
-                projected[n..].copy_from_slice(qd);
-                let saved = projected.clone();
-                if SecondOrder::new(&mut monitor)
-                    .project(t, &mut projected)
-                    .is_err()
-                {
-                    projected.copy_from_slice(&saved);
-                }
-                (&projected[..n], &projected[n..])
-            } else {
-                (q, qd)
-            };
-            monitor.set_state(q, qd, t);
-            let (energy, drift) = monitor.energy_and_drift();
-            row[0] = t;
-            row[1..=n].copy_from_slice(q);
-            row[n + 1..=2 * n].copy_from_slice(qd);
-            row[2 * n + 1] = (energy - energy0) / scale;
-            row[2 * n + 2] = drift;
-            on_row(&row);
-        };
+        let stopping = self.compiled.stopping_events;
+        // Rows and crossings are both written by the row maker; the integrator calls one
+        // callback at a time, so they share it through a RefCell.
+        let rows = RefCell::new(RowMaker::new(&self.compiled, self.initial_energy));
         match method {
             MethodName::Dopri5 | MethodName::Sdirk => {
                 let mut system = SecondOrder::new(&mut self.compiled);
-                integrate(
+                integrate_with_crossings(
                     &mut system,
                     if method == MethodName::Sdirk {
                         Method::Sdirk
@@ -386,7 +388,15 @@ impl Simulation {
                     &self.initial,
                     t1,
                     &options,
-                    &mut |t, y| emit(t, &y[..n], &y[n..]),
+                    &mut |t, y| on_row(rows.borrow_mut().row(t, &y[..n], &y[n..])),
+                    &mut |c: Crossing<'_>| {
+                        let mut maker = rows.borrow_mut();
+                        on_crossing(RecordedCrossing {
+                            event: c.index.saturating_sub(stopping),
+                            rising: c.rising,
+                            row: maker.row(c.t, &c.y[..n], &c.y[n..]),
+                        });
+                    },
                 )
             }
             MethodName::Gauss => {
@@ -407,9 +417,15 @@ impl Simulation {
                         }
                     }
                 }
-                let mut rates = Canonical::new(&mut converter);
+                let rates = RefCell::new(Canonical::new(&mut converter));
+                let velocity = |t: f64, y: &[f64]| {
+                    rates
+                        .borrow_mut()
+                        .velocity(t, y)
+                        .unwrap_or_else(|_| vec![f64::NAN; n])
+                };
                 let mut system = Canonical::new(&mut self.compiled);
-                integrate(
+                integrate_with_crossings(
                     &mut system,
                     Method::Gauss,
                     t0,
@@ -417,12 +433,79 @@ impl Simulation {
                     t1,
                     &options,
                     &mut |t, y| {
-                        let qd = rates.velocity(t, y).unwrap_or_else(|_| vec![f64::NAN; n]);
-                        emit(t, &y[..n], &qd);
+                        let qd = velocity(t, y);
+                        on_row(rows.borrow_mut().row(t, &y[..n], &qd));
+                    },
+                    &mut |c: Crossing<'_>| {
+                        let qd = velocity(c.t, c.y);
+                        let mut maker = rows.borrow_mut();
+                        on_crossing(RecordedCrossing {
+                            event: c.index.saturating_sub(stopping),
+                            rising: c.rising,
+                            row: maker.row(c.t, &c.y[..n], &qd),
+                        });
                     },
                 )
             }
         }
+    }
+}
+
+/// Makes output rows `[t, q…, q̇…, energy error, constraint drift]` from states, with its own
+/// copy of the compiled equations (energy, drift, projection) apart from the integrated one.
+struct RowMaker {
+    monitor: Compiled,
+    energy0: f64,
+    scale: f64,
+    projected: Vec<f64>,
+    saved: Vec<f64>,
+    row: Vec<f64>,
+}
+
+impl RowMaker {
+    fn new(compiled: &Compiled, energy0: f64) -> RowMaker {
+        let n = compiled.n;
+        RowMaker {
+            monitor: compiled.clone(),
+            energy0,
+            scale: if energy0.abs() < 1e-12 {
+                1.0
+            } else {
+                energy0.abs()
+            },
+            projected: vec![0.0; 2 * n],
+            saved: vec![0.0; 2 * n],
+            row: vec![0.0; 2 * n + 3],
+        }
+    }
+
+    fn row(&mut self, t: f64, q: &[f64], qd: &[f64]) -> &[f64] {
+        let n = self.monitor.n;
+        // Outputs between steps come from the dense output, which leaves the constraint
+        // manifold by about the local error; the written state is projected back like the
+        // step ends (when that fails, the state is written as it is and its drift shows).
+        let (q, qd) = if self.monitor.m > 0 {
+            self.projected[..n].copy_from_slice(q);
+            self.projected[n..].copy_from_slice(qd);
+            self.saved.copy_from_slice(&self.projected);
+            if SecondOrder::new(&mut self.monitor)
+                .project(t, &mut self.projected)
+                .is_err()
+            {
+                self.projected.copy_from_slice(&self.saved);
+            }
+            (&self.projected[..n], &self.projected[n..])
+        } else {
+            (q, qd)
+        };
+        self.monitor.set_state(q, qd, t);
+        let (energy, drift) = self.monitor.energy_and_drift();
+        self.row[0] = t;
+        self.row[1..=n].copy_from_slice(q);
+        self.row[n + 1..=2 * n].copy_from_slice(qd);
+        self.row[2 * n + 1] = (energy - self.energy0) / self.scale;
+        self.row[2 * n + 2] = drift;
+        &self.row
     }
 }
 
@@ -440,4 +523,77 @@ fn check_setting(
             reason: format!("{value} {reason}"),
         })
     }
+}
+
+/// What an event expression (`--stop-when`, `--record-when`) may name: `t`, the coordinates,
+/// their rates and the parameters and inputs that have values.
+struct EventNames {
+    context: ParseContext,
+    allowed: std::collections::HashSet<cas::Symbol>,
+    listing: String,
+}
+
+impl EventNames {
+    fn new(coordinates: &[String], parameters: &[(String, f64)]) -> EventNames {
+        let context = coordinates
+            .iter()
+            .fold(ParseContext::new(), |c, q| c.with_coordinate(q));
+        let mut names = vec!["t".to_owned()];
+        names.extend(coordinates.iter().cloned());
+        names.extend(coordinates.iter().map(|q| format!("{q}_d")));
+        names.extend(parameters.iter().map(|(name, _)| name.clone()));
+        let allowed = std::iter::once(cas::Expr::time())
+            .chain(coordinates.iter().map(|q| cas::Expr::coordinate(q)))
+            .chain(coordinates.iter().map(|q| cas::Expr::rate(q, 1)))
+            .chain(parameters.iter().map(|(name, _)| cas::Expr::symbol(name)))
+            .filter_map(cas::Expr::as_symbol)
+            .collect();
+        EventNames {
+            context,
+            allowed,
+            listing: names.join(", "),
+        }
+    }
+
+    /// Parses `text`; an error names what is wrong and the column where it is.
+    fn parse(&self, text: &str) -> Result<cas::Expr, String> {
+        let expr = cas::parse(text, &self.context).map_err(|e| e.to_string())?;
+        let mut stack = vec![expr];
+        while let Some(e) = stack.pop() {
+            if let cas::Node::Symbol(symbol) = e.node() {
+                if !self.allowed.contains(symbol) {
+                    let mut name = symbol.name().to_owned();
+                    if symbol.order() > 0 {
+                        name.push('_');
+                        name.extend(std::iter::repeat_n('d', usize::from(symbol.order())));
+                    }
+                    let at = column_of(text, &name)
+                        .map_or_else(String::new, |c| format!(" at column {c}"));
+                    return Err(format!(
+                        "unknown name `{name}`{at}; the expression may use {}",
+                        self.listing
+                    ));
+                }
+            }
+            stack.extend_from_slice(e.children());
+        }
+        Ok(expr)
+    }
+}
+
+/// The 1-based column (in characters) where `name` first occurs in `text` as a whole word.
+fn column_of(text: &str, name: &str) -> Option<usize> {
+    let is_word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut from = 0;
+    while let Some(found) = text[from..].find(name) {
+        let start = from + found;
+        let end = start + name.len();
+        let before = text[..start].chars().next_back().is_some_and(is_word);
+        let after = text[end..].chars().next().is_some_and(is_word);
+        if !before && !after {
+            return Some(text[..start].chars().count() + 1);
+        }
+        from = end;
+    }
+    None
 }

@@ -1,6 +1,8 @@
 //! `lagrange simulate --sweep NAME=A..B [--steps N | --samples N]`: many simulations of one
 //! model — a parameter sweep on a grid, or Monte-Carlo runs with values drawn uniformly from
 //! ranges — run in parallel on all cores (rayon), with a progress bar, one CSV row per run.
+//! Each run is prepared with the same options as a single `lagrange simulate`, lost contacts
+//! included (`options_with_contacts`).
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -11,9 +13,9 @@ use anyhow::{anyhow, bail, Context};
 use indicatif::{ProgressBar, ProgressStyle};
 use numeric::StopReason;
 use rayon::prelude::*;
-use simulation::Simulation;
+use simulation::{Simulation, SimulationOptions};
 
-use super::simulate::{options, SimulateArgs};
+use super::simulate::{stop_cause, SimulateArgs, StopCause};
 
 /// One varied name and its range.
 struct Range {
@@ -96,6 +98,8 @@ struct RunResult {
 fn one_run(
     model: &model::Model,
     args: &SimulateArgs,
+    options: &SimulationOptions,
+    contacts: &[String],
     ranges: &[Range],
     values: &[f64],
 ) -> Result<RunResult, String> {
@@ -107,7 +111,7 @@ fn one_run(
     let model = model
         .with_overrides(&overrides)
         .map_err(|e| e.to_string())?;
-    let mut simulation = Simulation::prepare(&model, &options(args)).map_err(|e| e.to_string())?;
+    let mut simulation = Simulation::prepare(&model, options).map_err(|e| e.to_string())?;
     let mut last = Vec::new();
     let outcome = simulation.run(&mut |row| {
         last.clear();
@@ -115,7 +119,10 @@ fn one_run(
     });
     let stop = match outcome.stop {
         StopReason::Finished => "finished".to_string(),
-        StopReason::Event { .. } => "event".to_string(),
+        StopReason::Event { index, .. } => match stop_cause(args, contacts, index) {
+            StopCause::StopWhen => "event".to_string(),
+            StopCause::ContactLost(name) => format!("contact lost: {name}"),
+        },
         StopReason::Failed(failure) => format!("failed {failure}"),
         _ => "stopped".to_string(),
     };
@@ -126,10 +133,21 @@ fn one_run(
     })
 }
 
-/// Runs the sweep and writes its CSV.
-pub fn run(args: &SimulateArgs, model: &model::Model) -> anyhow::Result<ExitCode> {
+/// Runs the sweep and writes its CSV. `options` and `contacts` come from
+/// `options_with_contacts`, as for a single run.
+pub fn run(
+    args: &SimulateArgs,
+    model: &model::Model,
+    options: &SimulationOptions,
+    contacts: &[String],
+) -> anyhow::Result<ExitCode> {
     if args.plot.is_some() {
         bail!("--plot draws one run; leave it out of a --sweep");
+    }
+    if !args.record_when.is_empty() || args.events.is_some() || args.summary.is_some() {
+        bail!(
+            "--record-when, --events and --summary describe one run; leave them out of a --sweep"
+        );
     }
     let ranges: Vec<Range> = args
         .sweep
@@ -150,7 +168,7 @@ pub fn run(args: &SimulateArgs, model: &model::Model) -> anyhow::Result<ExitCode
             return Ok(ExitCode::from(2));
         }
     };
-    let columns = match Simulation::prepare(&probe, &options(args)) {
+    let columns = match Simulation::prepare(&probe, options) {
         Ok(s) => s.columns(),
         Err(error) => {
             eprintln!("error: {error}");
@@ -168,7 +186,7 @@ pub fn run(args: &SimulateArgs, model: &model::Model) -> anyhow::Result<ExitCode
     let results: Vec<Result<RunResult, String>> = runs
         .par_iter()
         .map(|values| {
-            let r = one_run(model, args, &ranges, values);
+            let r = one_run(model, args, options, contacts, &ranges, values);
             if r.as_ref().map_or(true, |r| r.stop.starts_with("failed")) {
                 failed.fetch_add(1, Ordering::Relaxed);
             }

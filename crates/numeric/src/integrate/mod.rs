@@ -6,8 +6,10 @@
 //!
 //! [`integrate`] drives either: it reports the state at the requested output times through an
 //! observer, calls [`OdeSystem::project`] after each accepted step (constraint projection),
-//! stops at the first sign change of an event function (located by bisection on the dense
-//! output), and ends with an [`Outcome`]: why it stopped ([`StopReason`], with the time of a
+//! locates the sign changes of the event functions by bisection on the dense output — a
+//! stopping event ends the run at the first, a recording event ([`OdeSystem::event_stops`]
+//! false) is handed to [`integrate_with_crossings`]'s callback as a [`Crossing`] — and ends
+//! with an [`Outcome`]: why it stopped ([`StopReason`], with the time of a
 //! failure: a non-finite value, a singular matrix, a step size underflow) and the work done
 //! ([`Stats`]). What was observed before a failure stays with the observer.
 
@@ -56,8 +58,27 @@ pub trait OdeSystem {
     fn event_count(&self) -> usize {
         0
     }
-    /// Writes the event functions' values `g_k(t, y)`; the run stops where one changes sign.
+    /// Writes the event functions' values `g_k(t, y)`; the run stops where one changes sign
+    /// (or records the crossing, see [`OdeSystem::event_stops`]).
     fn events(&mut self, _t: f64, _y: &[f64], _g: &mut [f64]) {}
+    /// Whether a sign change of event function `index` stops the run (the default) or is
+    /// only recorded.
+    fn event_stops(&self, _index: usize) -> bool {
+        true
+    }
+}
+
+/// A sign change of a recording event function, located on the dense output.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crossing<'a> {
+    /// Which event function.
+    pub index: usize,
+    /// When.
+    pub t: f64,
+    /// Whether it went from negative to positive (else from positive to negative).
+    pub rising: bool,
+    /// The (interpolated) state at `t`.
+    pub y: &'a [f64],
 }
 
 /// An integration method.
@@ -200,7 +221,32 @@ pub fn integrate(
     options: &IntegratorOptions,
     observer: &mut dyn FnMut(f64, &[f64]),
 ) -> Outcome {
-    let mut driver = Driver::new(system, t0, y0, t_end, options);
+    integrate_with_crossings(
+        system,
+        method,
+        t0,
+        y0,
+        t_end,
+        options,
+        observer,
+        &mut |_| {},
+    )
+}
+
+/// [`integrate`], handing every sign change of a recording event function (in time order,
+/// none after the stop of a stopping event) to `on_crossing`.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_with_crossings(
+    system: &mut dyn OdeSystem,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    options: &IntegratorOptions,
+    observer: &mut dyn FnMut(f64, &[f64]),
+    on_crossing: &mut dyn FnMut(Crossing<'_>),
+) -> Outcome {
+    let mut driver = Driver::new(system, t0, y0, t_end, options, on_crossing);
     observer(t0, y0);
     let stop = match method {
         Method::Dopri5 => dopri5::run(&mut driver, observer),
@@ -228,6 +274,10 @@ pub(crate) struct Driver<'s> {
     t0: f64,
     events_before: Vec<f64>,
     events_after: Vec<f64>,
+    events_probe: Vec<f64>,
+    /// Crossings of recording events found in the current step: (index, t, rising).
+    recorded: Vec<(usize, f64, bool)>,
+    on_crossing: &'s mut dyn FnMut(Crossing<'_>),
     scratch: Vec<f64>,
 }
 
@@ -238,6 +288,7 @@ impl<'s> Driver<'s> {
         y0: &[f64],
         t_end: f64,
         options: &IntegratorOptions,
+        on_crossing: &'s mut dyn FnMut(Crossing<'_>),
     ) -> Self {
         let direction = if t_end >= t0 { 1.0 } else { -1.0 };
         let events = system.event_count();
@@ -262,6 +313,9 @@ impl<'s> Driver<'s> {
             t0,
             events_before,
             events_after: vec![0.0; events],
+            events_probe: vec![0.0; events],
+            recorded: Vec::new(),
+            on_crossing,
             scratch: vec![0.0; y0.len()],
         }
     }
@@ -291,37 +345,46 @@ impl<'s> Driver<'s> {
         observer: &mut dyn FnMut(f64, &[f64]),
     ) -> Option<StopReason> {
         self.stats.steps += 1;
-        // Events: the first sign change in this step, located by bisection on the interpolant.
+        // Events: every sign change in this step, located by bisection on the interpolant;
+        // the first of a stopping event ends the run there.
         let mut stop_event: Option<(usize, f64)> = None;
+        self.recorded.clear();
         if !self.events_before.is_empty() {
             self.system.events(t1, y1, &mut self.events_after);
             for k in 0..self.events_before.len() {
                 let (g0, g1) = (self.events_before[k], self.events_after[k]);
                 if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
-                    let (mut a, mut b) = (self.t, t1);
-                    let mut ga = g0;
-                    let mut values = vec![0.0; self.events_before.len()];
-                    for _ in 0..200 {
-                        let m = 0.5 * (a + b);
-                        if m == a || m == b {
-                            break;
+                    let t = self.locate(k, g0, t1, interpolate);
+                    if self.system.event_stops(k) {
+                        let earlier =
+                            stop_event.is_none_or(|(_, s)| (t - s) * self.direction < 0.0);
+                        if earlier {
+                            stop_event = Some((k, t));
                         }
-                        interpolate(m, &mut self.scratch);
-                        self.system.events(m, &self.scratch, &mut values);
-                        if ga * values[k] <= 0.0 {
-                            b = m;
-                        } else {
-                            a = m;
-                            ga = values[k];
-                        }
-                    }
-                    let earlier = stop_event.is_none_or(|(_, t)| (b - t) * self.direction < 0.0);
-                    if earlier {
-                        stop_event = Some((k, b));
+                    } else {
+                        self.recorded.push((k, t, g0 < 0.0));
                     }
                 }
             }
             std::mem::swap(&mut self.events_before, &mut self.events_after);
+        }
+        if !self.recorded.is_empty() {
+            let direction = self.direction;
+            self.recorded
+                .sort_by(|a, b| (a.1 * direction).total_cmp(&(b.1 * direction)));
+            for &(index, t, rising) in &self.recorded {
+                // A crossing at the stop itself is kept; one past it did not happen.
+                if stop_event.is_some_and(|(_, s)| (t - s) * direction > 0.0) {
+                    break;
+                }
+                interpolate(t, &mut self.scratch);
+                (self.on_crossing)(Crossing {
+                    index,
+                    t,
+                    rising,
+                    y: &self.scratch,
+                });
+            }
         }
         let horizon = stop_event.map_or(t1, |(_, t)| t);
         // Outputs inside the step.
@@ -366,6 +429,28 @@ impl<'s> Driver<'s> {
             }));
         }
         None
+    }
+
+    /// Where event `k`, `g0` at the step's start and of the other sign (or zero) at `t1`,
+    /// crosses zero: bisection on the interpolant down to adjacent floating-point times.
+    fn locate(&mut self, k: usize, g0: f64, t1: f64, interpolate: &dyn Fn(f64, &mut [f64])) -> f64 {
+        let (mut a, mut b) = (self.t, t1);
+        let mut ga = g0;
+        for _ in 0..200 {
+            let m = 0.5 * (a + b);
+            if m == a || m == b {
+                break;
+            }
+            interpolate(m, &mut self.scratch);
+            self.system.events(m, &self.scratch, &mut self.events_probe);
+            if ga * self.events_probe[k] <= 0.0 {
+                b = m;
+            } else {
+                a = m;
+                ga = self.events_probe[k];
+            }
+        }
+        b
     }
 
     /// Projects the current state after a step; returns whether it changed.

@@ -87,6 +87,67 @@ fn events_stop_at_the_zero_crossing() {
     assert_eq!(out.last().map(|p| p.0), Some(t));
 }
 
+/// The oscillator whose event `x = 0` is recorded instead of stopping the run.
+struct RecordingOscillator;
+
+impl OdeSystem for RecordingOscillator {
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        Oscillator { events: false }.rhs(t, y, dy)
+    }
+    fn event_count(&self) -> usize {
+        2
+    }
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        g[0] = y[0];
+        // Stops the run at t = 8.
+        g[1] = 8.0 - t;
+    }
+    fn event_stops(&self, index: usize) -> bool {
+        index == 1
+    }
+}
+
+#[test]
+fn recorded_events_give_every_crossing_with_its_direction() {
+    for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+        let options = IntegratorOptions {
+            rtol: 1e-10,
+            atol: 1e-12,
+            step: (method == Method::Gauss).then_some(0.05),
+            ..IntegratorOptions::default()
+        };
+        let mut crossings = Vec::new();
+        let outcome = integrate_with_crossings(
+            &mut RecordingOscillator,
+            method,
+            0.0,
+            &[1.0, 0.0],
+            10.0,
+            &options,
+            &mut |_, _| {},
+            &mut |c| crossings.push((c.index, c.t, c.rising, c.y[0])),
+        );
+        let StopReason::Event { index: 1, t } = outcome.stop else {
+            panic!("{method}: no stop: {:?}", outcome.stop);
+        };
+        assert!((t - 8.0).abs() < 1e-12);
+        // x = cos t crosses zero at π/2 + kπ, falling for even k; 8 s holds k = 0…2.
+        assert_eq!(crossings.len(), 3, "{method}: {crossings:?}");
+        // sdirk is of order 2: its crossings are as good as its solution.
+        let tolerance = if method == Method::Sdirk { 1e-4 } else { 1e-8 };
+        for (k, &(index, t, rising, x)) in crossings.iter().enumerate() {
+            let exact = std::f64::consts::FRAC_PI_2 + k as f64 * std::f64::consts::PI;
+            assert_eq!(index, 0);
+            assert!((t - exact).abs() < tolerance, "{method}: {t} vs {exact}");
+            assert_eq!(rising, k % 2 == 1, "{method}: crossing {k}");
+            assert!(x.abs() < 1e-12, "{method}: x = {x} at the crossing");
+        }
+    }
+}
+
 #[test]
 fn gauss_is_order_six_and_conserves_the_quadratic_energy() {
     let options = IntegratorOptions {
