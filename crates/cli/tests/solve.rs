@@ -119,6 +119,34 @@ fn the_free_response_starts_from_the_initial_state_and_follows_the_modes() {
 }
 
 #[test]
+fn the_simulation_section_stops_where_a_contact_is_lost() {
+    // A particle sliding off a sphere from θ0 = 0.01 leaves it where cos θ = ⅔ cos θ0; past
+    // that the model's equations no longer hold, and `solve` stops there as `simulate` does.
+    let source = std::fs::read_to_string(root().join("examples/particle-on-sphere.lag"))
+        .expect("the example exists");
+    let path = std::env::temp_dir().join(format!("lagrange-sphere-{}.lag", std::process::id()));
+    std::fs::write(&path, format!("{source}\nsimulate to 10\n")).expect("writes");
+    let o = lagrange(&["solve", path.to_str().expect("utf-8")]);
+    let _ = std::fs::remove_file(&path);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    assert!(
+        text.contains("the one-sided constraint `normal` is lost"),
+        "{text}"
+    );
+    let theta: f64 = text
+        .split("theta = ")
+        .nth(1)
+        .and_then(|rest| rest.split(',').next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no final θ in\n{text}"));
+    assert!(
+        (theta.cos() - 2.0 / 3.0 * 0.01_f64.cos()).abs() < 1e-5,
+        "θ = {theta}"
+    );
+}
+
+#[test]
 fn markdown_latex_and_json_carry_the_equations() {
     let md = stdout(&lagrange(&[
         "solve",

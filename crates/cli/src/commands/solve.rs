@@ -37,10 +37,26 @@ pub fn run(
             section.paragraph(inputs_sentence(&model, &source));
         }
     }
+    // Before the simulation: one-sided contacts stop it where they are lost, as in
+    // `lagrange simulate`.
+    let computed = match super::reactions::compute(path, &model, &source, &system, Some(&equations))
+    {
+        Ok(computed) => computed,
+        Err(code) => return Ok(code),
+    };
+    let contacts: Vec<(String, cas::Expr)> = computed
+        .iter()
+        .flat_map(|c| &c.reactions)
+        .filter_map(|r| r.along.map(|(value, _)| (r.name.clone(), value)))
+        .collect();
     // Prepared once: the free response starts from its initial state, and the Simulation
     // section runs it.
     let prepared = model.simulation().map(|_| {
-        simulation::Simulation::prepare(&model, &simulation::SimulationOptions::default())
+        let options = simulation::SimulationOptions {
+            stop_events: contacts.iter().map(|(_, value)| *value).collect(),
+            ..simulation::SimulationOptions::default()
+        };
+        simulation::Simulation::prepare(&model, &options)
     });
     match super::equilibria::analysis(&system, &equations) {
         Ok((rest, set, lin)) => {
@@ -72,11 +88,11 @@ pub fn run(
     if let Some(prepared) = prepared {
         document
             .sections
-            .push(simulation_section(path, prepared, out, format));
+            .push(simulation_section(path, prepared, &contacts, out, format));
     }
     let mut disagree = false;
-    match super::reactions::compute(path, &model, &source, &system, Some(&equations)) {
-        Ok(Some(computed)) => {
+    match computed {
+        Some(computed) => {
             disagree = computed
                 .reactions
                 .iter()
@@ -89,8 +105,7 @@ pub fn run(
                     &notation,
                 ));
         }
-        Ok(None) => {}
-        Err(code) => return Ok(code),
+        None => {}
     }
     let text = match format {
         ReportFormat::Text => document.to_text(),
@@ -192,6 +207,7 @@ fn inputs_sentence(model: &model::Model, source: &str) -> String {
 fn simulation_section(
     path: &Path,
     prepared: Result<simulation::Simulation, simulation::SimulationError>,
+    contacts: &[(String, cas::Expr)],
     out: Option<&Path>,
     format: ReportFormat,
 ) -> Section {
@@ -236,10 +252,15 @@ fn simulation_section(
     }
     match outcome.stop {
         numeric::StopReason::Finished => {}
-        numeric::StopReason::Event { t, .. } => {
-            section.remark(format!(
-                "The run stopped at t = {t}: its stop condition was met."
-            ));
+        numeric::StopReason::Event { index, t } => {
+            let why = match contacts.get(index) {
+                Some((name, _)) => format!(
+                    "the one-sided constraint `{name}` is lost there (its reaction changes sign), \
+                     and past that point the equations describe a motion that cannot happen"
+                ),
+                None => "its stop condition was met".to_string(),
+            };
+            section.remark(format!("The run stopped at t = {t:.6}: {why}."));
         }
         numeric::StopReason::Failed(failure) => {
             section.remark(format!(
