@@ -91,21 +91,18 @@ pub fn run(
             .push(simulation_section(path, prepared, &contacts, out, format));
     }
     let mut disagree = false;
-    match computed {
-        Some(computed) => {
-            disagree = computed
-                .reactions
-                .iter()
-                .any(|r| r.agreement == mechanics::Agreement::Disagree);
-            document
-                .sections
-                .push(report::solution_reactions::reactions_section(
-                    &computed.reactions,
-                    &computed.unilateral,
-                    &notation,
-                ));
-        }
-        None => {}
+    if let Some(computed) = computed {
+        disagree = computed
+            .reactions
+            .iter()
+            .any(|r| r.agreement == mechanics::Agreement::Disagree);
+        document
+            .sections
+            .push(report::solution_reactions::reactions_section(
+                &computed.reactions,
+                &computed.unilateral,
+                &notation,
+            ));
     }
     let text = match format {
         ReportFormat::Text => document.to_text(),
