@@ -147,9 +147,13 @@ struct Interner {
     len: u32,
 }
 
+/// The chunk directory is a zero-initialised static rather than a table built on first use:
+/// building 65 536 empty slots touched 1.5 MB (≈ 400 page faults, about 1 ms of every process
+/// that derives anything); untouched pages of a static cost nothing.
+static CHUNKS: [OnceLock<Chunk>; CHUNK_COUNT] = [const { OnceLock::new() }; CHUNK_COUNT];
+
 fn chunks() -> &'static [OnceLock<Chunk>] {
-    static CHUNKS: OnceLock<Box<[OnceLock<Chunk>]>> = OnceLock::new();
-    CHUNKS.get_or_init(|| (0..CHUNK_COUNT).map(|_| OnceLock::new()).collect())
+    &CHUNKS
 }
 
 fn interner() -> &'static Mutex<Interner> {
@@ -225,9 +229,11 @@ fn names() -> &'static Mutex<Names> {
 /// structural order compares names in every sort) takes no lock.
 type NameChunk = Box<[OnceLock<&'static str>]>;
 
+/// A zero-initialised static for the same reason as the node chunk directory.
+static NAME_TEXTS: [OnceLock<NameChunk>; CHUNK_COUNT] = [const { OnceLock::new() }; CHUNK_COUNT];
+
 fn name_texts() -> &'static [OnceLock<NameChunk>] {
-    static TEXTS: OnceLock<Box<[OnceLock<NameChunk>]>> = OnceLock::new();
-    TEXTS.get_or_init(|| (0..CHUNK_COUNT).map(|_| OnceLock::new()).collect())
+    &NAME_TEXTS
 }
 
 fn name_slot(id: u32) -> &'static OnceLock<&'static str> {
