@@ -914,6 +914,15 @@ pub(crate) fn to_rf(e: Expr) -> Rf {
 
 /// The canonical expression of a normal form, remembered as its own normal form.
 pub(crate) fn from_rf(r: &Rf) -> Expr {
+    remember(r, || Arc::new(r.clone()))
+}
+
+/// [`from_rf`] of a shared working form, which is remembered without a copy.
+pub(crate) fn from_shared_rf(r: &Arc<Rf>) -> Expr {
+    remember(r, || Arc::clone(r))
+}
+
+fn remember(r: &Rf, shared: impl FnOnce() -> Arc<Rf>) -> Expr {
     let e = r.to_expr();
     normal_memo()
         .lock()
@@ -925,7 +934,7 @@ pub(crate) fn from_rf(r: &Rf) -> Expr {
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .entry(e)
-            .or_insert_with(|| Arc::new(r.clone()));
+            .or_insert_with(shared);
     }
     e
 }
