@@ -29,7 +29,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use crate::expr::{intern, Constant, Expr, Func, Node};
+use crate::expr::{intern, intern_compound, Compound, Constant, Expr, Func, Node};
 use crate::number::Number;
 use crate::poly::{
     self, atom_expr, atom_exprs, gcd, plain_atom, root_atom, trig_atoms, AtomId, AtomKind,
@@ -303,7 +303,7 @@ pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
         .terms
         .iter()
         .map(|(m, c)| {
-            let mut factors: SmallVec<[(FactorKey, Expr); 6]> = m
+            let mut factors: SmallVec<[(FactorKey, Expr); 8]> = m
                 .iter()
                 .map(|&(a, e)| {
                     let i = ids.binary_search(&a).unwrap_or(0);
@@ -326,24 +326,25 @@ pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
                     factors.iter().map(|f| f.0).collect(),
                 ),
             };
-            let mut operands: Vec<Expr> = Vec::with_capacity(factors.len() + 1);
+            let mut operands: SmallVec<[Expr; 9]> = SmallVec::new();
             if with_number {
                 operands.push(Expr::number(c.clone()));
             }
             operands.extend(factors.iter().map(|f| f.1));
             let term = match operands.len() {
                 1 => operands[0],
-                _ => intern(Node::Mul(operands.into())),
+                _ => intern_compound(Compound::Mul, &operands),
             };
             (key, term)
         })
         .collect();
-    keyed.sort_by(|a, b| a.0.cmp(&b.0));
+    // Distinct monomials have distinct keys, so an unstable sort gives the same order.
+    keyed.sort_unstable_by(|a, b| a.0.cmp(&b.0));
     let terms: Vec<Expr> = keyed.into_iter().map(|(_, t)| t).collect();
     match terms.len() {
         0 => Expr::zero(),
         1 => terms[0],
-        _ => intern(Node::Add(terms.into())),
+        _ => intern_compound(Compound::Add, &terms),
     }
 }
 
@@ -359,7 +360,7 @@ enum TermKey {
     /// A single factor with coefficient one.
     Factor(FactorKey),
     /// A product: the coefficient (absent when one) and the sorted factors.
-    Product(Option<Number>, SmallVec<[FactorKey; 6]>),
+    Product(Option<Number>, SmallVec<[FactorKey; 8]>),
 }
 
 impl TermKey {
