@@ -152,6 +152,11 @@ pub(crate) fn atom_info(id: AtomId) -> AtomInfo {
     read_table().infos[(id & INDEX_MASK) as usize].clone()
 }
 
+/// The position of an atom in creation order (its id without the kind bits).
+pub(crate) fn atom_index(id: AtomId) -> u32 {
+    id & INDEX_MASK
+}
+
 /// The expression of an atom.
 pub(crate) fn atom_expr(id: AtomId) -> Expr {
     read_table().infos[(id & INDEX_MASK) as usize].expr
