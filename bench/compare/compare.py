@@ -6,11 +6,13 @@ Pinocchio C++ timer, then calls this script. Measures, for the planar n-link pen
 (bench/models/nlink.sh) and a 3-D chain of rigid rods on universal joints
 (bench/models/chain3d.sh):
 
-  derive   model → mass matrix and forcing: lagrange in-process (parse, lower, derive, in
-           normal form, first integrals included; crates/model/examples/derive_timing.rs) and
-           the whole `lagrange eom --format json` command (process start and JSON printing
-           included) against SymPy LagrangesMethod and KanesMethod (M and f formed, not
-           simplified, SymPy's import not counted), for growing n until a peer passes the cap;
+  derive   model → mass matrix and forcing: lagrange in-process (crates/model/examples/
+           derive_timing.rs), twice: the same work as the peer (parse, lower, K, V, Lagrange's
+           equations, M and f in normal form; `--same-work`) and everything `lagrange eom`
+           derives (also the first integrals with their checks, q̈ for n ≤ 2), and the whole
+           `lagrange eom --format json` command (process start and JSON printing included),
+           against SymPy LagrangesMethod and KanesMethod (M and f formed, not simplified,
+           SymPy's import not counted), for growing n until a peer passes the cap;
   rhs      one right-hand-side evaluation q̈ = M⁻¹ f at a state: lagrange's compiled tape
            against SymPy lambdify + numpy.linalg.solve, PyDy's generated ODE function, and
            Pinocchio's ABA timed in C++;
@@ -36,9 +38,11 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
-LAGRANGE = ROOT / "target" / "release" / "lagrange"
-RHS_TIMER = ROOT / "target" / "release" / "examples" / "rhs_timing"  # crates/simulation/examples
-DERIVE_TIMER = ROOT / "target" / "release" / "examples" / "derive_timing"
+# run.sh builds with cargo, which honours CARGO_TARGET_DIR (relative to the workspace root).
+TARGET = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
+LAGRANGE = TARGET / "release" / "lagrange"
+RHS_TIMER = TARGET / "release" / "examples" / "rhs_timing"  # crates/simulation/examples
+DERIVE_TIMER = TARGET / "release" / "examples" / "derive_timing"
 PINOCCHIO = HERE / ".build" / "pinocchio_aba"
 
 # ----------------------------------------------------------------------------- models
@@ -135,11 +139,13 @@ def run_capped(args: list[str], cap: float) -> float | None:
     return float(out.stdout.strip().splitlines()[-1])
 
 
-def time_lagrange_derive(path: Path, repeats: int = 3) -> float:
+def time_lagrange_derive(path: Path, same_work: bool = False, repeats: int = 5) -> float:
     """In-process time of parse + lower + derive (no process start, no printing): the best of
-    a few cold runs, each in a fresh process so that no memoised result is reused."""
+    a few cold runs, each in a fresh process so that no memoised result is reused. With
+    same_work, only what LagrangesMethod does (no first integrals)."""
+    args = [str(DERIVE_TIMER), str(path)] + (["--same-work"] if same_work else [])
     return min(
-        float(subprocess.run([str(DERIVE_TIMER), str(path)], check=True, capture_output=True, text=True).stdout)
+        float(subprocess.run(args, check=True, capture_output=True, text=True).stdout)
         for _ in range(repeats)
     )
 
@@ -297,7 +303,9 @@ def main() -> None:
             for n in sizes:
                 path = tmp / f"{kind}-{n}.lag"
                 path.write_text(model_text(kind, n))
-                row = {"system": kind, "n": n, "lagrange": time_lagrange_derive(path),
+                row = {"system": kind, "n": n,
+                       "lagrange_same_work": time_lagrange_derive(path, same_work=True),
+                       "lagrange": time_lagrange_derive(path),
                        "lagrange_command": time_lagrange_eom(path)}
                 for method in ["lagrange", "kane"]:
                     key = f"sympy_{method}"
@@ -305,7 +313,8 @@ def main() -> None:
                     if row[key] is None:
                         alive[method] = False
                 results["derive"].append(row)
-                print(f"  {kind:8} n={n:3}  lagrange {row['lagrange']:.4f} (command {row['lagrange_command']:.4f})  "
+                print(f"  {kind:8} n={n:3}  lagrange {row['lagrange_same_work']:.4f} same work, {row['lagrange']:.4f} all "
+                      f"(command {row['lagrange_command']:.4f})  "
                       f"LagrangesMethod {fmt(row['sympy_lagrange'])}  KanesMethod {fmt(row['sympy_kane'])}", flush=True)
                 if kind == "chain3d" and n >= 10:
                     break
@@ -353,18 +362,24 @@ def fmt(x) -> str:
 def ratio(peer, ours) -> str:
     if peer is None or ours is None or ours == 0:
         return "—"
-    return f"{peer / ours:.3g}×"
+    r = peer / ours
+    return f"{r:.0f}×" if r >= 100 else f"{r:.3g}×"
 
 
 def markdown(r: dict) -> str:
     lines = [f"Derivation cap: {r['cap_s']} s per peer run. Ratios are peer time / lagrange time.", ""]
     if r["derive"]:
-        lines += ["| system | n | lagrange (s) | `lagrange eom` command (s) | SymPy LagrangesMethod (s) | ratio | SymPy KanesMethod (s) | ratio |",
-                  "|---|---|---|---|---|---|---|---|"]
+        lines += ["lagrange, same work: parse, lower, K, V, Lagrange's equations, M and f in normal form (what "
+                  "LagrangesMethod does); all: also the first integrals and their checks (everything `lagrange eom` "
+                  "derives). Ratios: peer / same work, and peer / all in brackets.", "",
+                  "| system | n | lagrange, same work (s) | lagrange, all (s) | `lagrange eom` command (s) | "
+                  "SymPy LagrangesMethod (s) | ratio | SymPy KanesMethod (s) | ratio |",
+                  "|---|---|---|---|---|---|---|---|---|"]
         for x in r["derive"]:
-            lines.append(f"| {x['system']} | {x['n']} | {x['lagrange']:.4f} | {x['lagrange_command']:.4f} | {fmt(x['sympy_lagrange'])} | "
-                         f"{ratio(x['sympy_lagrange'], x['lagrange'])} | {fmt(x['sympy_kane'])} | "
-                         f"{ratio(x['sympy_kane'], x['lagrange'])} |")
+            same = x.get("lagrange_same_work")
+            lines.append(f"| {x['system']} | {x['n']} | {fmt(same)} | {x['lagrange']:.4f} | {x['lagrange_command']:.4f} | "
+                         f"{fmt(x['sympy_lagrange'])} | {ratio(x['sympy_lagrange'], same)} ({ratio(x['sympy_lagrange'], x['lagrange'])}) | "
+                         f"{fmt(x['sympy_kane'])} | {ratio(x['sympy_kane'], same)} ({ratio(x['sympy_kane'], x['lagrange'])}) |")
         lines.append("")
     if r["rhs"]:
         lines += ["| system | n | lagrange (µs) | lambdify + solve (µs) | ratio | PyDy (µs) | ratio | Pinocchio ABA, C++ (µs) | lagrange / Pinocchio |",
@@ -390,8 +405,8 @@ def plot(r: dict, path: Path) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
     for ax, kind in zip(axes, ["nlink", "chain3d"]):
         rows = [x for x in r["derive"] if x["system"] == kind]
-        for key, label in [("lagrange", "lagrange"), ("lagrange_command", "lagrange eom (command)"), ("sympy_lagrange", "SymPy LagrangesMethod"), ("sympy_kane", "SymPy KanesMethod")]:
-            pts = [(x["n"], x[key]) for x in rows if x[key] is not None]
+        for key, label in [("lagrange_same_work", "lagrange (same work)"), ("lagrange", "lagrange (all)"), ("lagrange_command", "lagrange eom (command)"), ("sympy_lagrange", "SymPy LagrangesMethod"), ("sympy_kane", "SymPy KanesMethod")]:
+            pts = [(x["n"], x[key]) for x in rows if x.get(key) is not None]
             if pts:
                 ax.plot(*zip(*pts), marker="o", label=label)
         ax.set_xscale("log")

@@ -2,7 +2,9 @@
 //! Lagrange's equations, extract the mass matrix and the forcing in normal form.
 //!
 //! Run with `cargo bench -p lagrange-cas --bench nlink`. Targets (issue 2): n = 10 under
-//! 10 ms, n = 40 under 1 s. Each iteration uses fresh symbol names, so that no memoised
+//! 10 ms, n = 40 under 1 s. `derive_nlink` goes through `Expr` operations only (a tree after
+//! every step); `derive_nlink_working_forms` keeps the intermediate results as
+//! `cas::NormalForm`, as the mechanics crate does. Each iteration uses fresh symbol names, so that no memoised
 //! normal form from an earlier iteration is reused.
 
 #[path = "../tests/common/nlink.rs"]
@@ -28,4 +30,14 @@ fn derive_nlink(bencher: divan::Bencher, n: usize) {
             NLink::with_prefix(n, &format!("r{run}_"))
         })
         .bench_values(|system| divan::black_box(system.equations()));
+}
+
+#[divan::bench(args = [5, 10, 20, 40], sample_count = 3, sample_size = 1)]
+fn derive_nlink_working_forms(bencher: divan::Bencher, n: usize) {
+    bencher
+        .with_inputs(|| {
+            let run = RUN.fetch_add(1, Ordering::Relaxed);
+            NLink::with_prefix(n, &format!("w{run}_"))
+        })
+        .bench_values(|system| divan::black_box(system.equations_on_working_forms()));
 }

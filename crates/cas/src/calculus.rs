@@ -205,6 +205,16 @@ impl Deriver {
     }
 }
 
+/// `∂r/∂var` of a working form.
+pub(crate) fn partial_derivative_rf(r: &Rf, var: Symbol) -> Rf {
+    Deriver::new(Wrt::Partial(Expr::from_symbol(var))).rf(r)
+}
+
+/// `d/dt r` of a working form.
+pub(crate) fn time_derivative_rf(r: &Rf) -> Rf {
+    Deriver::new(Wrt::Time).rf(r)
+}
+
 impl Expr {
     /// The partial derivative `∂self/∂var`, in normal form. Coordinates and their rates are
     /// independent variables here (`∂q̇/∂q = 0`).

@@ -7,6 +7,9 @@
 //!   coefficients, trigonometry of sums and multiples expanded, `sin² = 1 − cos²` applied and
 //!   fractions in lowest terms. For the class of expressions Lagrangian mechanics produces,
 //!   equal expressions have identical normal forms, so [`Expr::is_zero`] is exact.
+//! * [`NormalForm`] — a normal form kept as a polynomial fraction, for chains of operations
+//!   whose intermediate trees nobody reads (building a large tree is most of an operation's
+//!   cost); [`NormalForm::to_expr`] gives the same tree as [`Expr::normal`].
 //! * Calculus: [`Expr::diff`] (partial derivative), [`Expr::dt`] (total time derivative with
 //!   `q → q̇ → q̈`), [`Expr::taylor`] (series to any order at a point).
 //! * [`Expr::subs`], [`Expr::eval`], [`Expr::coeff`], [`Expr::collect`],
@@ -29,6 +32,7 @@
 mod calculus;
 mod eval;
 mod expr;
+mod form;
 mod matrix;
 mod normal;
 mod number;
@@ -41,6 +45,7 @@ pub mod solve;
 pub use calculus::NotASymbol;
 pub use eval::EvalError;
 pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
+pub use form::NormalForm;
 pub use matrix::{Matrix, SolveError};
 pub use number::Number;
 pub use parse::{parse, ParseContext, ParseError};

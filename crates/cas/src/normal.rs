@@ -23,17 +23,16 @@
 //! fraction whose denominator is a long trigonometric sum makes every later operation on it
 //! expensive; a GCD gives up (leaving the fraction less reduced but equal) past a work budget.
 
-use std::cmp::Ordering;
 use std::sync::{Arc, Mutex, OnceLock};
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use crate::expr::{intern, Constant, Expr, Func, Node};
+use crate::expr::{intern_compound, Compound, Constant, Expr, Func, Node};
 use crate::number::Number;
 use crate::poly::{
-    self, atom_expr, atom_exprs, gcd, plain_atom, root_atom, trig_atoms, AtomId, AtomKind,
-    Monomial, Poly,
+    self, atom_expr, atom_exprs, atom_index, gcd, plain_atom, root_atom, trig_atoms, AtomId,
+    AtomKind, Monomial, Poly,
 };
 
 /// A fraction of polynomials in canonical form (see the module documentation).
@@ -275,14 +274,37 @@ pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
     // splits), so the canonical tree is built directly. Its operands must be sorted by
     // `Expr::cmp_structure`; rather than compare trees, the atoms are ranked once and every
     // factor and term is sorted by a key that orders exactly as `cmp_structure` would.
-    // Anything else (roots, symbolic powers) takes the general constructors.
-    let mut ids: Vec<AtomId> = p
-        .terms
-        .iter()
-        .flat_map(|(m, _)| m.iter().map(|&(a, _)| a))
-        .collect();
-    ids.sort_unstable();
-    ids.dedup();
+    // Anything else (roots, symbolic powers, absurd exponents) takes the general constructors.
+    if p.terms.is_empty() {
+        return Expr::zero();
+    }
+    // The distinct atoms, through a table indexed by atom index (atoms are few and densely
+    // numbered, so this beats sorting every factor of every term).
+    let (mut low, mut high) = (u32::MAX, 0u32);
+    for (m, _) in &p.terms {
+        for &(a, e) in m {
+            if e >= MAX_PACKED_EXPONENT {
+                return general_poly_to_expr(p);
+            }
+            low = low.min(atom_index(a));
+            high = high.max(atom_index(a));
+        }
+    }
+    let mut slot_of: Vec<u32> = if low <= high {
+        vec![u32::MAX; (high - low + 1) as usize]
+    } else {
+        Vec::new()
+    };
+    let mut ids: Vec<AtomId> = Vec::new();
+    for (m, _) in &p.terms {
+        for &(a, _) in m {
+            let slot = &mut slot_of[(atom_index(a) - low) as usize];
+            if *slot == u32::MAX {
+                *slot = ids.len() as u32;
+                ids.push(a);
+            }
+        }
+    }
     let exprs = atom_exprs(&ids);
     let mut classes = Vec::with_capacity(exprs.len());
     for e in &exprs {
@@ -299,146 +321,98 @@ pub(crate) fn poly_to_expr(p: &Poly) -> Expr {
     for (rank, &i) in by_structure.iter().enumerate() {
         ranks[i] = rank as u32;
     }
-    let mut keyed: Vec<(TermKey, Expr)> = p
-        .terms
-        .iter()
-        .map(|(m, c)| {
-            let mut factors: SmallVec<[(FactorKey, Expr); 6]> = m
-                .iter()
-                .map(|&(a, e)| {
-                    let i = ids.binary_search(&a).unwrap_or(0);
-                    let base = exprs[i];
-                    if e == 1 {
-                        (FactorKey(classes[i], ranks[i], 1), base)
-                    } else {
-                        let power = intern(Node::Pow([base, Expr::int(i64::from(e))]));
-                        (FactorKey(3, ranks[i], e), power)
-                    }
-                })
-                .collect();
-            factors.sort_unstable_by_key(|f| f.0);
-            let with_number = !c.is_exact_one() || factors.is_empty();
-            let key = match (with_number, factors.as_slice()) {
-                (true, []) => TermKey::Number(c.clone()),
-                (false, [(f, _)]) => TermKey::Factor(*f),
-                _ => TermKey::Product(
-                    with_number.then(|| c.clone()),
-                    factors.iter().map(|f| f.0).collect(),
-                ),
-            };
-            let mut operands: Vec<Expr> = Vec::with_capacity(factors.len() + 1);
-            if with_number {
-                operands.push(Expr::number(c.clone()));
-            }
-            operands.extend(factors.iter().map(|f| f.1));
-            let term = match operands.len() {
-                1 => operands[0],
-                _ => intern(Node::Mul(operands.into())),
-            };
-            (key, term)
-        })
-        .collect();
-    keyed.sort_by(|a, b| a.0.cmp(&b.0));
-    let terms: Vec<Expr> = keyed.into_iter().map(|(_, t)| t).collect();
-    match terms.len() {
-        0 => Expr::zero(),
-        1 => terms[0],
-        _ => intern(Node::Add(terms.into())),
-    }
-}
-
-/// A factor `atom^e` in the structural order: the node's rank (symbol 1, constant 2, power 3,
-/// function 6), then the atom's rank among the polynomial's atoms, then the exponent.
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-struct FactorKey(u8, u32, u32);
-
-/// A term in the structural order of [`Expr::cmp_structure`].
-enum TermKey {
-    /// A number alone.
-    Number(Number),
-    /// A single factor with coefficient one.
-    Factor(FactorKey),
-    /// A product: the coefficient (absent when one) and the sorted factors.
-    Product(Option<Number>, SmallVec<[FactorKey; 6]>),
-}
-
-impl TermKey {
-    fn node_rank(&self) -> u8 {
-        match self {
-            TermKey::Number(_) => 0,
-            TermKey::Factor(f) => f.0,
-            TermKey::Product(..) => 4,
-        }
-    }
-}
-
-impl Ord for TermKey {
-    fn cmp(&self, other: &TermKey) -> Ordering {
-        match self.node_rank().cmp(&other.node_rank()) {
-            Ordering::Equal => {}
-            o => return o,
-        }
-        match (self, other) {
-            (TermKey::Number(x), TermKey::Number(y)) => x.total_cmp(y),
-            (TermKey::Factor(x), TermKey::Factor(y)) => x.cmp(y),
-            (TermKey::Product(cx, fx), TermKey::Product(cy, fy)) => {
-                // As `cmp_slices`: from the last operand; the coefficient is the first operand
-                // and a number sorts before any factor.
-                let len_x = fx.len() + usize::from(cx.is_some());
-                let len_y = fy.len() + usize::from(cy.is_some());
-                for k in 0..len_x.min(len_y) {
-                    let a = operand_from_end(cx, fx, k);
-                    let b = operand_from_end(cy, fy, k);
-                    let o = match (a, b) {
-                        (Operand::Number(x), Operand::Number(y)) => x.total_cmp(y),
-                        (Operand::Number(_), Operand::Factor(_)) => Ordering::Less,
-                        (Operand::Factor(_), Operand::Number(_)) => Ordering::Greater,
-                        (Operand::Factor(x), Operand::Factor(y)) => x.cmp(&y),
-                    };
-                    if o != Ordering::Equal {
-                        return o;
-                    }
+    // Each term's operands counted from the last, packed in one flat buffer (see `TermKey`).
+    let mut packed: Vec<u64> = Vec::with_capacity(p.terms.len() * 8);
+    let mut keys: Vec<TermKey> = Vec::with_capacity(p.terms.len());
+    for (index, (m, c)) in p.terms.iter().enumerate() {
+        let mut factors: SmallVec<[(u64, Expr); 8]> = m
+            .iter()
+            .map(|&(a, e)| {
+                let i = slot_of[(atom_index(a) - low) as usize] as usize;
+                let base = exprs[i];
+                if e == 1 {
+                    (pack_factor(classes[i], ranks[i], 1), base)
+                } else {
+                    let power = intern_compound(Compound::Pow, &[base, Expr::int(i64::from(e))]);
+                    (pack_factor(3, ranks[i], e), power)
                 }
-                len_x.cmp(&len_y)
+            })
+            .collect();
+        factors.sort_unstable_by_key(|f| f.0);
+        let with_number = !c.is_exact_one() || factors.is_empty();
+        let start = packed.len() as u32;
+        packed.extend(factors.iter().rev().map(|f| f.0));
+        let rank = match (with_number, factors.as_slice()) {
+            (true, []) => 0,
+            (false, [(f, _)]) => (f >> 56) as u8,
+            _ => {
+                if with_number {
+                    packed.push(NUMBER_OPERAND);
+                }
+                4
             }
-            _ => Ordering::Equal,
+        };
+        let mut operands: SmallVec<[Expr; 9]> = SmallVec::new();
+        if with_number {
+            operands.push(Expr::number(c.clone()));
         }
+        operands.extend(factors.iter().map(|f| f.1));
+        let term = match operands.len() {
+            1 => operands[0],
+            _ => intern_compound(Compound::Mul, &operands),
+        };
+        keys.push(TermKey {
+            rank,
+            start,
+            end: packed.len() as u32,
+            index: index as u32,
+            term,
+        });
+    }
+    let operands_of = |k: &TermKey| &packed[k.start as usize..k.end as usize];
+    // Distinct monomials have distinct keys, so an unstable sort gives the same order.
+    keys.sort_unstable_by(|a, b| {
+        a.rank
+            .cmp(&b.rank)
+            .then_with(|| operands_of(a).cmp(operands_of(b)))
+            .then_with(|| {
+                p.terms[a.index as usize]
+                    .1
+                    .total_cmp(&p.terms[b.index as usize].1)
+            })
+    });
+    let terms: SmallVec<[Expr; 16]> = keys.iter().map(|k| k.term).collect();
+    match terms.len() {
+        1 => terms[0],
+        _ => intern_compound(Compound::Add, &terms),
     }
 }
 
-impl PartialOrd for TermKey {
-    fn partial_cmp(&self, other: &TermKey) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
+/// Exponents from here on do not fit a packed factor key (and never occur in mechanics).
+const MAX_PACKED_EXPONENT: u32 = 1 << 24;
+
+/// The operand that stands for a product's coefficient: below every packed factor, as a number
+/// sorts before every factor.
+const NUMBER_OPERAND: u64 = 0;
+
+/// A factor `atom^e` in the structural order, as one integer: the node's rank (symbol 1,
+/// constant 2, power 3, function 6), then the atom's rank among the polynomial's atoms, then
+/// the exponent (below [`MAX_PACKED_EXPONENT`]).
+fn pack_factor(class: u8, rank: u32, exponent: u32) -> u64 {
+    (u64::from(class) << 56) | (u64::from(rank) << 24) | u64::from(exponent)
 }
 
-impl PartialEq for TermKey {
-    fn eq(&self, other: &TermKey) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for TermKey {}
-
-enum Operand<'a> {
-    Number(&'a Number),
-    Factor(FactorKey),
-}
-
-/// The `k`-th operand of a product counted from the last.
-fn operand_from_end<'a>(
-    coefficient: &'a Option<Number>,
-    factors: &[FactorKey],
-    k: usize,
-) -> Operand<'a> {
-    if k < factors.len() {
-        Operand::Factor(factors[factors.len() - 1 - k])
-    } else {
-        match coefficient {
-            Some(c) => Operand::Number(c),
-            None => Operand::Factor(factors[0]),
-        }
-    }
+/// A term in the structural order of [`Expr::cmp_structure`]: the rank of its node (a number
+/// 0, a single factor its factor's rank, a product 4), then its operands from the last (the
+/// most significant, as `cmp_slices` compares them), a product's coefficient being its first
+/// operand ([`NUMBER_OPERAND`]); a shorter operand list that is a prefix of a longer one sorts
+/// first, as in `cmp_slices`. Equal operand lists leave the coefficients to decide.
+struct TermKey {
+    rank: u8,
+    start: u32,
+    end: u32,
+    index: u32,
+    term: Expr,
 }
 
 fn general_poly_to_expr(p: &Poly) -> Expr {
@@ -914,6 +888,15 @@ pub(crate) fn to_rf(e: Expr) -> Rf {
 
 /// The canonical expression of a normal form, remembered as its own normal form.
 pub(crate) fn from_rf(r: &Rf) -> Expr {
+    remember(r, || Arc::new(r.clone()))
+}
+
+/// [`from_rf`] of a shared working form, which is remembered without a copy.
+pub(crate) fn from_shared_rf(r: &Arc<Rf>) -> Expr {
+    remember(r, || Arc::clone(r))
+}
+
+fn remember(r: &Rf, shared: impl FnOnce() -> Arc<Rf>) -> Expr {
     let e = r.to_expr();
     normal_memo()
         .lock()
@@ -925,7 +908,7 @@ pub(crate) fn from_rf(r: &Rf) -> Expr {
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .entry(e)
-            .or_insert_with(|| Arc::new(r.clone()));
+            .or_insert_with(shared);
     }
     e
 }
@@ -1020,8 +1003,8 @@ mod tests {
         atoms.push(Expr::coordinate("phi").cos());
         atoms.push(Expr::symbol("a").exp());
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-        for _ in 0..300 {
-            let terms = 1 + rng.below(6);
+        for _ in 0..1000 {
+            let terms = 1 + rng.below(9);
             let e = Expr::add_all((0..terms).map(|_| {
                 let c = Expr::int(rng.below(7) as i64 - 3);
                 let factors = rng.below(4);

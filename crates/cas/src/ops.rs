@@ -4,10 +4,12 @@
 //! These are the tools the mechanics layer uses to read equations: the mass matrix is the
 //! coefficient of each `q̈_j` in the equations of motion, the forcing is what remains.
 
+use std::sync::Arc;
+
 use rustc_hash::FxHashMap;
 
 use crate::expr::Expr;
-use crate::normal::{from_rf, monomial_to_expr, poly_to_expr, to_rf, Rf};
+use crate::normal::{cached_rf, from_rf, monomial_to_expr, poly_to_expr, to_rf, Rf};
 use crate::number::Number;
 use crate::poly::{AtomId, Monomial, Poly};
 
@@ -35,6 +37,44 @@ fn atoms_and_normal_form(e: Expr, atoms: &[Expr]) -> Option<(Vec<AtomId>, Rf)> {
         return None;
     }
     Some((ids, r))
+}
+
+/// The coefficients and the remainder of a working form affine in `atoms` (see
+/// [`Expr::affine_coefficients`]).
+pub(crate) fn affine_split(r: &Rf, atoms: &[Expr]) -> Option<(Vec<Rf>, Rf)> {
+    let ids: Vec<AtomId> = atoms
+        .iter()
+        .map(|a| single_atom(*a))
+        .collect::<Option<_>>()?;
+    if ids.iter().any(|a| r.den.contains_atom(*a)) {
+        return None;
+    }
+    let mut buckets: Vec<Vec<(Monomial, Number)>> = vec![Vec::new(); ids.len()];
+    let mut rest: Vec<(Monomial, Number)> = Vec::new();
+    for (m, c) in &r.num.terms {
+        let mut found: Option<(usize, usize)> = None;
+        for (pos, (a, e)) in m.iter().enumerate() {
+            if let Some(j) = ids.iter().position(|x| x == a) {
+                if *e != 1 || found.is_some() {
+                    return None;
+                }
+                found = Some((j, pos));
+            }
+        }
+        match found {
+            Some((j, pos)) => {
+                let mut reduced = m.clone();
+                reduced.remove(pos);
+                buckets[j].push((reduced, c.clone()));
+            }
+            None => rest.push((m.clone(), c.clone())),
+        }
+    }
+    let finish = |terms: Vec<(Monomial, Number)>| {
+        Rf::new(Poly::from_terms(terms), r.den.clone()).unwrap_or_else(Rf::zero)
+    };
+    let coefficients = buckets.into_iter().map(finish).collect();
+    Some((coefficients, finish(rest)))
 }
 
 impl Expr {
@@ -149,35 +189,12 @@ impl Expr {
     /// `None` when an entry of `atoms` is not an atom, occurs in the denominator, or occurs
     /// non-linearly (squared, or multiplied by another of them).
     pub fn affine_coefficients(self, atoms: &[Expr]) -> Option<(Vec<Expr>, Expr)> {
-        let (ids, r) = atoms_and_normal_form(self, atoms)?;
-        let mut buckets: Vec<Vec<(Monomial, Number)>> = vec![Vec::new(); ids.len()];
-        let mut rest: Vec<(Monomial, Number)> = Vec::new();
-        for (m, c) in &r.num.terms {
-            let mut found: Option<(usize, usize)> = None;
-            for (pos, (a, e)) in m.iter().enumerate() {
-                if let Some(j) = ids.iter().position(|x| x == a) {
-                    if *e != 1 || found.is_some() {
-                        return None;
-                    }
-                    found = Some((j, pos));
-                }
-            }
-            match found {
-                Some((j, pos)) => {
-                    let mut reduced = m.clone();
-                    reduced.remove(pos);
-                    buckets[j].push((reduced, c.clone()));
-                }
-                None => rest.push((m.clone(), c.clone())),
-            }
-        }
-        let finish = |terms: Vec<(Monomial, Number)>| {
-            Rf::new(Poly::from_terms(terms), r.den.clone())
-                .map(|x| from_rf(&x))
-                .unwrap_or_else(Expr::zero)
+        let r = match cached_rf(self) {
+            Some(r) => r,
+            None => Arc::new(to_rf(self)),
         };
-        let coefficients = buckets.into_iter().map(finish).collect();
-        Some((coefficients, finish(rest)))
+        let (coefficients, rest) = affine_split(&r, atoms)?;
+        Some((coefficients.iter().map(from_rf).collect(), from_rf(&rest)))
     }
 
     /// The number of terms in the numerator of the normal form (a size measure).

@@ -152,6 +152,11 @@ pub(crate) fn atom_info(id: AtomId) -> AtomInfo {
     read_table().infos[(id & INDEX_MASK) as usize].clone()
 }
 
+/// The position of an atom in creation order (its id without the kind bits).
+pub(crate) fn atom_index(id: AtomId) -> u32 {
+    id & INDEX_MASK
+}
+
 /// The expression of an atom.
 pub(crate) fn atom_expr(id: AtomId) -> Expr {
     read_table().infos[(id & INDEX_MASK) as usize].expr
@@ -173,8 +178,10 @@ fn needs_rewrite(id: AtomId, exp: u32) -> bool {
     }
 }
 
-/// A monomial: `(atom, exponent)` pairs sorted by atom id, exponents positive.
-pub(crate) type Monomial = SmallVec<[(AtomId, u32); 4]>;
+/// A monomial: `(atom, exponent)` pairs sorted by atom id, exponents positive. Eight pairs
+/// inline: the terms of a chain's kinetic energy (`m l_j l_k q̇_j q̇_k cos θ_j cos θ_k`) have six
+/// or seven atoms, and a spilled monomial costs an allocation per term in every operation.
+pub(crate) type Monomial = SmallVec<[(AtomId, u32); 8]>;
 
 /// A sparse polynomial: terms sorted by decreasing monomial (lexicographic on atom ids, the
 /// smallest id most significant), no zero coefficients.

@@ -21,6 +21,16 @@ fn nlink_equations_equal_the_closed_form() {
 }
 
 #[test]
+fn working_forms_give_the_same_equations_as_expression_operations() {
+    for n in [1, 2, 4, 6] {
+        let system = NLink::with_prefix(n, "working_");
+        // Working forms first, so that their trees are not memoised results of the other route.
+        let on_forms = system.equations_on_working_forms();
+        assert_eq!(on_forms, system.equations(), "n = {n}");
+    }
+}
+
+#[test]
 fn nlink_equations_evaluate_like_the_closed_form() {
     let n = 4;
     let system = NLink::new(n);

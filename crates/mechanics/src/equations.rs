@@ -1,7 +1,7 @@
 //! Kinematics, energies, generalized forces and Lagrange's equations of the second kind:
 //! `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j − Q_j = 0`, gathered as `M(q,t) q̈ = f(q,q̇,t)`.
 
-use cas::{Expr, Matrix, SolveError, Symbol};
+use cas::{Expr, Matrix, NormalForm, SolveError, Symbol};
 
 use crate::system::{ConstraintForm, Load, Rotation, System, Vector};
 
@@ -289,7 +289,17 @@ fn eliminate(
 /// A singular mass matrix (naming the coordinates), equations or constraints not linear in
 /// the accelerations or rates, or no coordinate left.
 pub fn derive(system: &System) -> Result<Equations, MechanicsError> {
-    derive_with(system, true)
+    derive_all(system, true, true)
+}
+
+/// [`derive`] without looking for first integrals (`first_integrals()` is empty): `K`, `V`,
+/// Lagrange's equations, `M` and `f` — the work of tools that only form the equations, for
+/// comparing with them (bench/compare).
+///
+/// # Errors
+/// As [`derive`].
+pub fn derive_without_first_integrals(system: &System) -> Result<Equations, MechanicsError> {
+    derive_all(system, true, false)
 }
 
 /// [`derive`]; with `check_mass_matrix` false a singular mass matrix is accepted (a released
@@ -297,6 +307,14 @@ pub fn derive(system: &System) -> Result<Equations, MechanicsError> {
 pub(crate) fn derive_with(
     system: &System,
     check_mass_matrix: bool,
+) -> Result<Equations, MechanicsError> {
+    derive_all(system, check_mass_matrix, true)
+}
+
+fn derive_all(
+    system: &System,
+    check_mass_matrix: bool,
+    first_integrals_wanted: bool,
 ) -> Result<Equations, MechanicsError> {
     let mut system = system.clone();
     let mut eliminated = Vec::new();
@@ -383,23 +401,37 @@ pub(crate) fn derive_with(
     let potential = potential.normal();
     let lagrangian = (kinetic - potential).normal();
 
-    // Lagrange II.
+    // Lagrange II, on working forms: only the results that are kept become trees (building a
+    // large tree costs more than the derivative it comes from).
+    let lagrangian_form = lagrangian.normal_form();
+    let partial_form =
+        |s: Option<Symbol>, f: &NormalForm| s.map_or_else(NormalForm::zero, |s| f.diff(s));
+    let momenta: Vec<NormalForm> = (0..n)
+        .map(|j| partial_form(qd_sym[j], &lagrangian_form))
+        .collect();
+    let generalized_gradient: Vec<NormalForm> = (0..n)
+        .map(|j| partial_form(q_sym[j], &lagrangian_form))
+        .collect();
+    let mut lhs_forms = Vec::with_capacity(n);
     let mut lhs = Vec::with_capacity(n);
     let mut mass_matrix = Vec::with_capacity(n);
     let mut forcing = Vec::with_capacity(n);
-    let momenta: Vec<Expr> = (0..n)
-        .map(|j| partial(lagrangian, qd_sym[j]).normal())
-        .collect();
     for j in 0..n {
-        let e = (momenta[j].dt() - partial(lagrangian, q_sym[j])).normal();
-        let Some((row, rest)) = (e - forces[j]).affine_coefficients(&qdd) else {
+        let e = momenta[j].dt().sub(&generalized_gradient[j]);
+        let with_forces = if forces[j].is_literal_zero() {
+            e.clone()
+        } else {
+            e.sub(&forces[j].normal_form())
+        };
+        let Some((row, rest)) = with_forces.affine_coefficients(&qdd) else {
             return Err(MechanicsError::NotLinearInAccelerations {
                 coordinate: coordinates[j].clone(),
             });
         };
-        lhs.push(e);
-        mass_matrix.push(row);
-        forcing.push((-rest).normal());
+        lhs.push(e.to_expr());
+        lhs_forms.push(e);
+        mass_matrix.push(row.iter().map(NormalForm::to_expr).collect());
+        forcing.push(rest.neg().to_expr());
     }
     if check_mass_matrix {
         check_singular(&mass_matrix, &coordinates)?;
@@ -436,12 +468,13 @@ pub(crate) fn derive_with(
     // `A q̇ = 0` with no rate-free term (scleronomic), so energy survives them; a momentum
     // survives when its coordinate's column of `A` is zero.
     let mut first_integrals = Vec::new();
-    let workless = kept.iter().all(|(_, c)| {
-        c.affine_coefficients(&qd)
-            .is_some_and(|(_, offset)| offset.is_zero())
-    });
+    let workless = first_integrals_wanted
+        && kept.iter().all(|(_, c)| {
+            c.affine_coefficients(&qd)
+                .is_some_and(|(_, offset)| offset.is_zero())
+        });
     let time = sym(Expr::time());
-    let explicit_time = time.is_some_and(|t| !lagrangian.diff(t).is_zero());
+    let explicit_time = workless && time.is_some_and(|t| !lagrangian_form.diff(t).is_zero());
     // A generalized force that depends on inputs and parameters only does not stop a
     // conservation law from holding while the inputs keep it at zero: report it as a
     // condition. One that depends on the state (damping, a spring written as a force) does.
@@ -456,42 +489,57 @@ pub(crate) fn derive_with(
             Some(vec![f])
         }
     };
-    let energy_conditions: Option<Vec<Expr>> = forces
-        .iter()
-        .map(|f| condition_for(*f))
-        .collect::<Option<Vec<Vec<Expr>>>>()
-        .map(|c| c.into_iter().flatten().collect());
+    let energy_conditions: Option<Vec<Expr>> = if workless {
+        forces
+            .iter()
+            .map(|f| condition_for(*f))
+            .collect::<Option<Vec<Vec<Expr>>>>()
+            .map(|c| c.into_iter().flatten().collect())
+    } else {
+        None
+    };
     if let (false, true, Some(conditions)) = (explicit_time, workless, energy_conditions) {
-        let h = ((0..n).map(|j| qd[j] * momenta[j]).sum::<Expr>() - lagrangian).normal();
+        let h = (0..n).fold(lagrangian_form.neg(), |h, j| {
+            h.add(&qd[j].normal_form().mul(&momenta[j]))
+        });
         // dh/dt = Σ q̇_j (E_j + Q_j) − ∂L/∂t identically; with Q = 0, no explicit time and
         // workless constraints h is conserved. The identity is checked rather than assumed
         // up to 8 degrees of freedom; beyond, the check costs more than the derivation and
         // the theorem (whose premises were checked exactly above) stands alone.
         let confirmed = n > 8 || {
-            let residual = h.dt() - (0..n).map(|j| qd[j] * lhs[j]).sum::<Expr>();
-            residual.is_zero()
+            let power = (0..n).fold(NormalForm::zero(), |p, j| {
+                p.add(&qd[j].normal_form().mul(&lhs_forms[j]))
+            });
+            h.dt().sub(&power).is_zero()
         };
         if confirmed {
-            let energy = (kinetic + potential).normal();
-            let kind = if energy.equals(h) { "energy" } else { "jacobi" };
+            let energy = kinetic.normal_form().add(&potential.normal_form());
+            let kind = if energy.sub(&h).is_zero() {
+                "energy"
+            } else {
+                "jacobi"
+            };
             first_integrals.push(FirstIntegral {
                 kind,
                 coordinate: None,
-                value: h,
+                value: h.to_expr(),
                 conditions,
             });
         }
     }
     for j in 0..n {
+        if !first_integrals_wanted {
+            break;
+        }
         let free_of_constraints = constraint_matrix.iter().all(|row| row[j].is_zero());
-        if !free_of_constraints || !partial(lagrangian, q_sym[j]).is_zero() {
+        if !free_of_constraints || !generalized_gradient[j].is_zero() {
             continue;
         }
         if let Some(conditions) = condition_for(forces[j]) {
             first_integrals.push(FirstIntegral {
                 kind: "momentum",
                 coordinate: Some(coordinates[j].clone()),
-                value: momenta[j],
+                value: momenta[j].to_expr(),
                 conditions,
             });
         }

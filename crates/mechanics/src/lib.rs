@@ -38,7 +38,8 @@ mod system;
 mod unilateral;
 
 pub use equations::{
-    angular_velocity, derive, Elimination, Equations, FirstIntegral, MechanicsError,
+    angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,
+    FirstIntegral, MechanicsError,
 };
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{

@@ -1,14 +1,18 @@
 //! Times one derivation in-process: read the model file, check it, lower it, derive the
 //! equations of motion (mass matrix, forcing, first integrals). Used by bench/compare to
-//! compare the same work with SymPy's mechanics module, without process start or printing.
-//! `cargo run --release -p lagrange-model --example derive_timing -- MODEL` prints seconds.
+//! compare with SymPy's mechanics module, without process start or printing.
+//! `cargo run --release -p lagrange-model --example derive_timing -- MODEL [--same-work]`
+//! prints seconds. With `--same-work` only what SymPy's `LagrangesMethod` does is timed:
+//! `K`, `V`, Lagrange's equations, `M` and `f` (no first integrals, no explicit `q̈`).
 
 use std::process::ExitCode;
 use std::time::Instant;
 
 fn main() -> ExitCode {
-    let Some(path) = std::env::args().nth(1) else {
-        eprintln!("usage: derive_timing MODEL");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let same_work = args.iter().any(|a| a == "--same-work");
+    let Some(path) = args.iter().find(|a| !a.starts_with("--")).cloned() else {
+        eprintln!("usage: derive_timing MODEL [--same-work]");
         return ExitCode::from(2);
     };
     let text = match std::fs::read_to_string(&path) {
@@ -32,7 +36,12 @@ fn main() -> ExitCode {
             return ExitCode::from(1);
         }
     };
-    let equations = match mechanics::derive(&system) {
+    let derived = if same_work {
+        mechanics::derive_without_first_integrals(&system)
+    } else {
+        mechanics::derive(&system)
+    };
+    let equations = match derived {
         Ok(eq) => eq,
         Err(e) => {
             eprintln!("{path}: {e}");

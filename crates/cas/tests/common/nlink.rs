@@ -88,6 +88,27 @@ impl NLink {
     /// The closed form: `M_ij = μ_ij l_i l_j cos(θ_i − θ_j)`,
     /// `f_i = −Σ_j μ_ij l_i l_j sin(θ_i − θ_j) θ̇_j² − μ_ii g l_i sin θ_i`, with
     /// `μ_ij = Σ_{k ≥ max(i,j)} m_k`.
+    /// [`NLink::equations`] with the intermediate results kept as working forms
+    /// (`cas::NormalForm`), as the mechanics crate derives them: only `M` and `f` become trees.
+    pub fn equations_on_working_forms(&self) -> (Vec<Vec<Expr>>, Vec<Expr>) {
+        let (kinetic, potential) = self.energies();
+        let lagrangian = (kinetic - potential).normal().normal_form();
+        let mut mass = Vec::new();
+        let mut forcing = Vec::new();
+        for i in 0..self.angles.len() {
+            let momentum = lagrangian.diff(self.rates[i].as_symbol().expect("a rate is a symbol"));
+            let equation = momentum
+                .dt()
+                .sub(&lagrangian.diff(self.angles[i].as_symbol().expect("an angle is a symbol")));
+            let (row, rest) = equation
+                .affine_coefficients(&self.accelerations)
+                .expect("Lagrange's equations are affine in the accelerations");
+            mass.push(row.iter().map(cas::NormalForm::to_expr).collect());
+            forcing.push(rest.neg().to_expr());
+        }
+        (mass, forcing)
+    }
+
     pub fn closed_form(&self) -> (Vec<Vec<Expr>>, Vec<Expr>) {
         let n = self.angles.len();
         let mu = |i: usize, j: usize| Expr::add_all(self.masses[i.max(j)..].iter().copied());
