@@ -4,7 +4,7 @@
 use std::process::Output;
 
 mod common;
-use common::lagrange;
+use common::{lagrange, lagrange_with, SPHERE_RUN};
 
 fn last_row(o: &Output) -> Vec<f64> {
     let text = String::from_utf8_lossy(&o.stdout);
@@ -17,18 +17,7 @@ fn last_row(o: &Output) -> Vec<f64> {
 #[test]
 fn the_particle_leaves_the_sphere_where_the_normal_force_vanishes() {
     for theta0 in ["0.01", "0.5"] {
-        let o = lagrange(&[
-            "simulate",
-            "examples/particle-on-sphere.lag",
-            "--t-end",
-            "5",
-            "--rtol",
-            "1e-10",
-            "--atol",
-            "1e-12",
-            "--set",
-            &format!("theta={theta0}"),
-        ]);
+        let o = lagrange_with(&SPHERE_RUN, &["--set", &format!("theta={theta0}")]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(

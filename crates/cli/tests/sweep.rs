@@ -4,7 +4,7 @@
 use std::process::Output;
 
 mod common;
-use common::lagrange;
+use common::{lagrange, lagrange_with, SPHERE_RUN};
 
 fn rows(o: &Output) -> Vec<Vec<String>> {
     String::from_utf8_lossy(&o.stdout)
@@ -133,20 +133,7 @@ fn a_bifurcation_diagram_is_drawn_for_a_sweep() {
 #[test]
 fn sweep_runs_stop_where_a_contact_is_lost_like_single_runs() {
     // The particle leaves the sphere where cos θ = ⅔ cos θ₀.
-    let o = lagrange(&[
-        "simulate",
-        "examples/particle-on-sphere.lag",
-        "--t-end",
-        "5",
-        "--rtol",
-        "1e-10",
-        "--atol",
-        "1e-12",
-        "--sweep",
-        "theta=0.1..0.5",
-        "--steps",
-        "2",
-    ]);
+    let o = lagrange_with(&SPHERE_RUN, &["--sweep", "theta=0.1..0.5", "--steps", "2"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let table = rows(&o);
     let outcome = table[0]
@@ -165,18 +152,7 @@ fn sweep_runs_stop_where_a_contact_is_lost_like_single_runs() {
             (theta - want).abs() < 1e-7,
             "run {k}: θ = {theta} vs {want}"
         );
-        let single = lagrange(&[
-            "simulate",
-            "examples/particle-on-sphere.lag",
-            "--t-end",
-            "5",
-            "--rtol",
-            "1e-10",
-            "--atol",
-            "1e-12",
-            "--set",
-            &format!("theta={value}"),
-        ]);
+        let single = lagrange_with(&SPHERE_RUN, &["--set", &format!("theta={value}")]);
         let last = rows(&single).pop().expect("rows");
         assert_eq!(row[2..2 + last.len()], last[..], "run {k}");
     }

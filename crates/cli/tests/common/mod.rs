@@ -30,3 +30,23 @@ pub fn stdout(o: &Output) -> String {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// `lagrange simulate` of the particle leaving a sphere, tight tolerances, 5 s: the start of
+/// the contact-loss tests' command lines.
+#[allow(dead_code)]
+pub const SPHERE_RUN: [&str; 8] = [
+    "simulate",
+    "examples/particle-on-sphere.lag",
+    "--t-end",
+    "5",
+    "--rtol",
+    "1e-10",
+    "--atol",
+    "1e-12",
+];
+
+/// [`lagrange`] with `first` and then `rest` as arguments.
+#[allow(dead_code)]
+pub fn lagrange_with(first: &[&str], rest: &[&str]) -> Output {
+    lagrange(&[first, rest].concat())
+}
