@@ -177,6 +177,34 @@ fn quadratic_roots(c: [Expr; 3]) -> Option<Vec<Solution>> {
 }
 
 /// Solves a numerator with no factor `x`, `sin x`, `cos x`, `tan x` left.
+/// The solutions of `e = 0` when `e` is at most quadratic in one trigonometric function `f` of
+/// `x`: each root `r` of that quadratic gives the two angles `angles(r)`, which exist only when
+/// `|r| ≤ 1` if `bounded` (sine and cosine).
+fn inverse_trig(
+    e: Expr,
+    f: Expr,
+    x: Symbol,
+    bounded: bool,
+    angles: impl Fn(Expr) -> [Expr; 2],
+) -> Option<Vec<Solution>> {
+    let roots = quadratic_roots(quadratic_in(e, f, x)?)?;
+    Some(
+        roots
+            .into_iter()
+            .flat_map(|r| {
+                let mut conditions = r.conditions.clone();
+                if bounded {
+                    conditions.push(Condition::AbsAtMostOne(r.value));
+                }
+                angles(r.value).map(|value| Solution {
+                    value,
+                    conditions: conditions.clone(),
+                })
+            })
+            .collect(),
+    )
+}
+
 fn solve_remainder(e: Expr, x: Symbol) -> Option<Vec<Solution>> {
     let var = Expr::from_symbol(x);
     let (s, c, t) = (var.sin(), var.cos(), var.tan());
@@ -194,57 +222,20 @@ fn solve_remainder(e: Expr, x: Symbol) -> Option<Vec<Solution>> {
         // A polynomial in x itself.
         (_, false, false, false) => quadratic_roots(quadratic_in(e, var, x)?),
         // Only cos x: x = ±acos(r), |r| ≤ 1.
-        (true, false, true, false) => {
-            let roots = quadratic_roots(quadratic_in(e, c, x)?)?;
-            Some(
-                roots
-                    .into_iter()
-                    .flat_map(|r| {
-                        let mut conditions = r.conditions.clone();
-                        conditions.push(Condition::AbsAtMostOne(r.value));
-                        let a = r.value.acos();
-                        [a, -a].map(|value| Solution {
-                            value,
-                            conditions: conditions.clone(),
-                        })
-                    })
-                    .collect(),
-            )
-        }
+        (true, false, true, false) => inverse_trig(e, c, x, true, |r| {
+            let a = r.acos();
+            [a, -a]
+        }),
         // Only sin x: x = asin(r), π − asin(r).
-        (true, true, false, false) => {
-            let roots = quadratic_roots(quadratic_in(e, s, x)?)?;
-            Some(
-                roots
-                    .into_iter()
-                    .flat_map(|r| {
-                        let mut conditions = r.conditions.clone();
-                        conditions.push(Condition::AbsAtMostOne(r.value));
-                        let a = r.value.asin();
-                        [a, pi - a].map(|value| Solution {
-                            value,
-                            conditions: conditions.clone(),
-                        })
-                    })
-                    .collect(),
-            )
-        }
+        (true, true, false, false) => inverse_trig(e, s, x, true, |r| {
+            let a = r.asin();
+            [a, pi - a]
+        }),
         // Only tan x: x = atan(r), atan(r) + π.
-        (true, false, false, true) => {
-            let roots = quadratic_roots(quadratic_in(e, t, x)?)?;
-            Some(
-                roots
-                    .into_iter()
-                    .flat_map(|r| {
-                        let a = r.value.atan();
-                        [a, a + pi].map(|value| Solution {
-                            value,
-                            conditions: r.conditions.clone(),
-                        })
-                    })
-                    .collect(),
-            )
-        }
+        (true, false, false, true) => inverse_trig(e, t, x, false, |r| {
+            let a = r.atan();
+            [a, a + pi]
+        }),
         // a sin x + b cos x + d = 0.
         (true, true, true, false) => {
             let (coefficients, d) = e.affine_coefficients(&[s, c])?;
