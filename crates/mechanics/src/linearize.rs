@@ -444,34 +444,21 @@ impl Linearized {
     /// conditions do not have one entry per coordinate.
     #[must_use]
     pub fn free_response(&self, dq0: &[f64], dv0: &[f64], t: f64) -> Option<Vec<f64>> {
-        if max_abs(&self.c0) > 1e-12 * max_abs(&self.k0).max(1.0) {
-            return None;
-        }
-        let w2 = self.omega_squared.as_ref()?;
-        let n = self.m0.len();
-        if dq0.len() != n || dv0.len() != n {
-            return None;
-        }
-        let project = |x: &[f64], v: &[f64]| -> f64 {
-            (0..n)
-                .map(|i| (0..n).map(|j| x[i] * self.m0[i][j] * v[j]).sum::<f64>())
-                .sum()
-        };
-        let mut out = vec![0.0; n];
-        for (x, w2) in self.modes.iter().zip(w2) {
-            let (a, b) = (project(x, dq0), project(x, dv0));
+        let mut out = vec![0.0; self.m0.len()];
+        for term in self.modal_terms(dq0, dv0)? {
+            let w2 = term.omega_squared;
             let tol = 1e-12 * w2.abs().max(1.0);
-            let (c, s) = if *w2 > tol {
+            let (c, s) = if w2 > tol {
                 let w = w2.sqrt();
                 ((w * t).cos(), (w * t).sin() / w)
-            } else if *w2 < -tol {
+            } else if w2 < -tol {
                 let g = (-w2).sqrt();
                 ((g * t).cosh(), (g * t).sinh() / g)
             } else {
                 (1.0, t)
             };
-            for i in 0..n {
-                out[i] += x[i] * (a * c + b * s);
+            for (o, x) in out.iter_mut().zip(&term.shape) {
+                *o += x * (term.a * c + term.b * s);
             }
         }
         Some(out)
