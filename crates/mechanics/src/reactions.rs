@@ -446,6 +446,20 @@ fn check_disentangled(release: &Release) -> Result<(), ReactionError> {
     Ok(())
 }
 
+/// Whether a point moves with the release's redundant displacements (loads at such points act
+/// on the released bodies).
+fn moved_by(release: &Release) -> impl Fn(&Vector) -> bool {
+    let symbols: Vec<Symbol> = release
+        .displacements
+        .iter()
+        .filter_map(|(u, _)| Expr::coordinate(u).as_symbol())
+        .collect();
+    move |e: &Vector| {
+        e.iter()
+            .any(|x| symbols.iter().any(|s| !x.diff(*s).is_zero()))
+    }
+}
+
 /// Newton–Euler: `R·d_i` from the momentum equation of the released bodies.
 fn newton_euler(
     original: &System,
@@ -472,15 +486,7 @@ fn newton_euler(
             add(b.mass, &b.centre);
         }
     }
-    let symbols: Vec<Symbol> = release
-        .displacements
-        .iter()
-        .filter_map(|(u, _)| Expr::coordinate(u).as_symbol())
-        .collect();
-    let moves = |e: &Vector| {
-        e.iter()
-            .any(|x| symbols.iter().any(|s| !x.diff(*s).is_zero()))
-    };
+    let moves = moved_by(release);
     let mut applied: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
     let mut potential = Expr::zero();
     let mut dissipation = Expr::zero();
@@ -587,15 +593,7 @@ fn moment_equation(
     for (total, s) in inertial.iter_mut().zip(spin) {
         *total += s;
     }
-    let symbols: Vec<Symbol> = release
-        .displacements
-        .iter()
-        .filter_map(|(u, _)| Expr::coordinate(u).as_symbol())
-        .collect();
-    let moves = |e: &Vector| {
-        e.iter()
-            .any(|x| symbols.iter().any(|s| !x.diff(*s).is_zero()))
-    };
+    let moves = moved_by(release);
     let mut applied: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
     let mut potential = Expr::zero();
     let mut dissipation = Expr::zero();
