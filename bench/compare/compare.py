@@ -41,7 +41,7 @@ ROOT = HERE.parent.parent
 # run.sh builds with cargo, which honours CARGO_TARGET_DIR (relative to the workspace root).
 TARGET = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
 LAGRANGE = TARGET / "release" / "lagrange"
-RHS_TIMER = TARGET / "release" / "examples" / "rhs_timing"  # crates/simulation/examples
+RHS_TIMER = TARGET / "release" / "examples" / "rhs_timing"  # crates/lagrange/examples
 DERIVE_TIMER = TARGET / "release" / "examples" / "derive_timing"
 PINOCCHIO = HERE / ".build" / "pinocchio_aba"
 

@@ -17,8 +17,8 @@ fi
 
 (cd "$root" && cargo build --release --quiet -p lagrange-cli && \
     cargo build --release --quiet -p lagrange-model --example derive_timing)
-if [ -f "$root/crates/simulation/examples/rhs_timing.rs" ]; then
-    (cd "$root" && cargo build --release --quiet -p lagrange-simulation --example rhs_timing)
+if [ -f "$root/crates/lagrange/examples/rhs_timing.rs" ]; then
+    (cd "$root" && cargo build --release --quiet -p lagrange --example rhs_timing)
 fi
 
 prefix="$("$venv/bin/python" -c 'import cmeel, os; print(os.path.join(os.path.dirname(cmeel.__path__[0]), "cmeel.prefix"))')"

@@ -13,7 +13,7 @@ fi
 "$venv/bin/pip" install --quiet sympy==1.14.0 numpy scipy
 target="${CARGO_TARGET_DIR:-$root/target}"
 cargo build --quiet --release -p lagrange-cli --manifest-path "$root/Cargo.toml"
-cargo build --quiet --release -p lagrange-simulation --example rhs_timing \
+cargo build --quiet --release -p lagrange --example rhs_timing \
     --manifest-path "$root/Cargo.toml"
 sizes=("$@")
 if [ ${#sizes[@]} -eq 0 ]; then sizes=(2 5 10); fi

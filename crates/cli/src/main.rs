@@ -1,8 +1,9 @@
-//! The `lagrange` binary: parses flags, calls the library crates, owns the terminal and the
-//! exit code. Nothing below this crate prints or exits.
+//! The `lagrange` binary: parses flags, calls the `lagrange` library, prints, and owns the
+//! exit code (the contract is in docs/cli.md). Nothing else prints or exits.
 
 mod args;
 mod commands;
+mod exit;
 
 use std::process::ExitCode;
 
@@ -10,13 +11,22 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     restore_default_sigpipe();
-    let cli = args::Cli::parse();
-    match commands::run(cli.command) {
-        Ok(code) => code,
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
         Err(error) => {
-            eprintln!("error: {error:#}");
-            ExitCode::FAILURE
+            // Help and version are answers, not mistakes; a wrong flag is the user's mistake.
+            let code = if error.use_stderr() {
+                exit::Exit::Input
+            } else {
+                exit::Exit::Success
+            };
+            let _ = error.print();
+            return code.into();
         }
+    };
+    match commands::run(cli.command) {
+        Ok(code) => code.into(),
+        Err(failure) => failure.report(),
     }
 }
 

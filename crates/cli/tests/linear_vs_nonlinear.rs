@@ -4,6 +4,7 @@
 
 mod common;
 use common::lagrange;
+use lagrange::cas;
 
 #[test]
 fn small_oscillations_follow_the_modes() {

@@ -76,7 +76,7 @@ fn set_overrides_parameters_and_initial_values() {
     assert!((data[1][1] - 0.01).abs() < 1e-5, "{:?}", data[1]);
 
     let o = lagrange(&["simulate", "examples/simple-pendulum.lag", "--set", "k=1"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(1));
     let err = text(&o.stderr);
     assert!(
         err.contains("`k` is not a parameter") && err.contains("theta_d"),
@@ -134,7 +134,7 @@ fn plots_svg_and_png_and_refuses_other_names() {
         "--plot",
         "run.pdf",
     ]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(1));
     assert!(text(&o.stderr).contains(".svg or .png"));
 }
 

@@ -302,7 +302,7 @@ fn set_overrides_a_value_for_one_run_in_every_command() {
     assert!(o.status.success());
     let want = format!("(cos = {:.6}", 2.0 / 3.0 * 0.5f64.cos());
     assert!(stdout(&o).contains(&want), "{}", stdout(&o));
-    // An unknown name is an error that lists what can be set, with exit code 2.
+    // An unknown name is an error that lists what can be set, with exit code 1 (a mistake in the input).
     for command in ["eom", "solve", "reactions"] {
         let o = lagrange(&[
             command,
@@ -310,7 +310,7 @@ fn set_overrides_a_value_for_one_run_in_every_command() {
             "--set",
             "nope=1",
         ]);
-        assert_eq!(o.status.code(), Some(2), "{command}");
+        assert_eq!(o.status.code(), Some(1), "{command}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             err.contains("`nope` is not a parameter"),

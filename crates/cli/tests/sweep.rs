@@ -90,7 +90,7 @@ fn a_bad_sweep_is_an_error() {
         "--sweep",
         "nope=0..1",
     ]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.status.code(), Some(1));
     let o = lagrange(&[
         "simulate",
         "examples/double-pendulum.lag",

@@ -1,5 +1,5 @@
 //! Mechanics over `cas` expressions: the checked input [`System`], and Lagrange's equations of
-//! the second kind [`derive`] → [`Equations`].
+//! the second kind [`derive()`] → [`Equations`].
 //!
 //! | symbol | meaning | shape |
 //! |---|---|---|

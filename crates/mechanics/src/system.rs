@@ -160,6 +160,30 @@ impl System {
         self.inputs.push((name.to_string(), value));
     }
 
+    /// Gives a parameter a new value; `false` when there is no parameter of that name. The
+    /// equations stay valid: they hold parameters as symbols.
+    pub fn set_parameter(&mut self, name: &str, value: Option<Expr>) -> bool {
+        match self.parameters.iter_mut().find(|(n, _)| n == name) {
+            Some(entry) => {
+                entry.1 = value;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Gives an input (kept as a symbol) a new constant value; `false` when there is no such
+    /// input.
+    pub fn set_input(&mut self, name: &str, value: Option<Expr>) -> bool {
+        match self.inputs.iter_mut().find(|(n, _)| n == name) {
+            Some(entry) => {
+                entry.1 = value;
+                true
+            }
+            None => false,
+        }
+    }
+
     /// Inputs kept as symbols, with their constant values.
     #[must_use]
     pub fn inputs(&self) -> &[(String, Option<Expr>)] {

@@ -7,9 +7,12 @@ mod reactions;
 pub mod solution;
 pub mod solution_equilibria;
 pub mod solution_reactions;
+pub mod solution_simulation;
 
-pub use reactions::{reactions_json, UnilateralReport};
+pub use eom_text::eom_text;
+pub use reactions::{reaction_text, reactions_json, UnilateralReport};
 mod bifurcation;
+mod eom_text;
 mod plot;
 
 pub use bifurcation::{plot_bifurcation, BifurcationPoint};

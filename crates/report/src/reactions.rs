@@ -2,6 +2,7 @@
 //! section "reactions").
 
 use cas::print::to_sympy;
+use cas::print::to_unicode;
 use mechanics::{Reaction, Unilateral, Vector};
 use serde_json::{json, Value};
 
@@ -78,4 +79,122 @@ pub fn reactions_json(
         "coordinates": coordinates,
         "reactions": list,
     })
+}
+
+/// One reaction for the terminal: its force, couple, friction, the one-sided analysis, the
+/// generalized reaction and multipliers, and whether the methods agree.
+#[must_use]
+pub fn reaction_text(r: &Reaction, unilateral: Option<&UnilateralReport>) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    // Each line of the text, as the terminal shows it.
+    macro_rules! say {
+        ($($arg:tt)*) => {{
+            let _ = writeln!(out, $($arg)*);
+        }};
+    }
+    let kind = r.kind.map_or("constraint", |k| k.word());
+    match &r.point {
+        Some((point, _)) => say!(
+            "{} — {kind} at {point}, on {}:",
+            r.name,
+            r.members.join(", ")
+        ),
+        None if r.driving => say!(
+            "{} — driven coordinate, the generalized force that drives it:",
+            r.name
+        ),
+        None => say!("{} — {kind}, generalized reaction:", r.name),
+    }
+    if let Some(f) = &r.force {
+        for (axis, x) in ["x", "y", "z"].iter().zip(f) {
+            if !x.is_zero() {
+                say!("  R_{axis} = {}", to_unicode(*x));
+            }
+        }
+        if f.iter().all(|x| x.is_zero()) {
+            say!("  R = 0");
+        }
+    }
+    if let Some(c) = &r.couple {
+        for (axis, x) in ["x", "y", "z"].iter().zip(c) {
+            if !x.is_zero() {
+                say!("  C_{axis} = {}", to_unicode(*x));
+            }
+        }
+        if c.iter().all(|x| x.is_zero()) {
+            say!("  C = 0");
+        }
+    }
+    if let Some(c) = &r.unbalanced_couple {
+        let parts: Vec<String> = ["x", "y", "z"]
+            .iter()
+            .zip(c)
+            .filter(|(_, x)| !x.is_zero())
+            .map(|(axis, x)| format!("C_{axis} = {}", to_unicode(*x)))
+            .collect();
+        say!(
+            "  note: the motion also needs a couple about this point ({}), which a {} does not transmit: loads the release cannot attribute to these bodies act on them (other supports built into the coordinates, whose forces R then includes, or generalized forces), or the joint transmits a couple (ask for a clamp)",
+            parts.join(", "),
+            r.kind.map_or("constraint", |k| k.word())
+        );
+    }
+    if let Some(f) = &r.friction {
+        for (axis, x) in ["x", "y", "z"].iter().zip(f) {
+            if !x.is_zero() {
+                say!("  friction F_{axis} = {}", to_unicode(*x));
+            }
+        }
+    }
+    if let Some((value, _)) = &r.along {
+        let (symbol, sign) = match r.kind {
+            Some(mechanics::ReleaseKind::Rope) => {
+                ("T", "pull only: the rope goes slack where T < 0")
+            }
+            _ => ("N", "push only: contact is lost where N < 0"),
+        };
+        say!("  {symbol} = {}   ({sign})", to_unicode(*value));
+        if let Some(u) = unilateral {
+            if let Some(along) = u.along_motion {
+                say!(
+                    "  along the motion (energy integral h = h₀): {symbol} = {}",
+                    to_unicode(along)
+                );
+            }
+            match &u.scan {
+                Some(Unilateral::Lost {
+                    coordinate,
+                    value,
+                    rate,
+                }) => say!(
+                    "  from the initial state, {symbol} changes sign at {coordinate} = {value:.6} (cos = {:.6}, rate {rate:.6}): the constraint is lost there",
+                    value.cos()
+                ),
+                Some(Unilateral::LostAtStart) => {
+                    say!("  {symbol} < 0 at the initial state: the constraint does not hold")
+                }
+                Some(Unilateral::Kept {
+                    coordinate,
+                    turning_point: Some(q),
+                }) => say!(
+                    "  from the initial state, {symbol} keeps its sign up to the turning point {coordinate} = {q:.6}"
+                ),
+                _ => {}
+            }
+        }
+    }
+    for (q, e) in &r.generalized {
+        let label = if r.driving { "Q_drive" } else { "Q^R" };
+        say!("  {label}_{q} = {}", to_unicode(*e));
+    }
+    for (k, l) in r.multipliers.iter().enumerate() {
+        say!("  λ{} = {}", k + 1, to_unicode(*l));
+    }
+    let methods: Vec<&str> = r.methods.iter().map(|m| m.name()).collect();
+    say!(
+        "  methods: {} — {}",
+        methods.join(", "),
+        r.agreement.verdict()
+    );
+    out
 }

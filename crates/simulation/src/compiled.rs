@@ -69,6 +69,7 @@ impl Compiled {
         system: &System,
         equations: &Equations,
         parameters: &[(String, f64)],
+        timed_inputs: &[(String, Expr)],
         events: &[Expr],
         stopping_events: usize,
         canonical: bool,
@@ -98,7 +99,12 @@ impl Compiled {
             .iter()
             .map(|(name, value)| (Expr::symbol(name), Expr::float(*value)))
             .collect();
-        let fold = |e: Expr| e.subs(&constants).normal();
+        // Inputs given as functions of time go in first: their expressions may hold parameters.
+        let timed: Vec<(Expr, Expr)> = timed_inputs
+            .iter()
+            .map(|(name, value)| (Expr::symbol(name), *value))
+            .collect();
+        let fold = |e: Expr| e.subs(&timed).subs(&constants).normal();
         let folded = |es: &[Expr]| es.iter().map(|e| fold(*e)).collect::<Vec<_>>();
 
         let mut dynamic_outputs: Vec<Expr> = folded(&equations.mass_matrix().concat());

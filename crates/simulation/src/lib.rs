@@ -1,9 +1,12 @@
 //! Simulation of a lagrange model: the equations of motion derived by `mechanics` are
 //! compiled once into register tapes ([`numeric::Tape`]) and integrated by `numeric`'s methods.
 //!
-//! * [`Simulation::prepare`]: model (with `--set` overrides already applied) → compiled
-//!   equations, initial state, settings. Everything that can be wrong with the input is found
-//!   here, before any step.
+//! * [`Simulation::prepare`]: a [`mechanics::System`] and its derived
+//!   [`mechanics::Equations`], with values, initial state and events ([`Setup`]) and resolved
+//!   [`Settings`] → compiled equations. Nothing is derived here, so one derivation serves many
+//!   runs (sweeps); everything that can be wrong with the input is found here, before any
+//!   step. The model language is not known here: the `lagrange` crate reads a model's
+//!   settings and values and hands them over.
 //! * [`Simulation::run`]: integrates and hands each output row
 //!   `[t, q…, q̇…, energy error, constraint drift]` ([`Simulation::columns`]) to a callback,
 //!   then returns the [`numeric::Outcome`] (finished, event, or a failure with its time).
@@ -20,4 +23,7 @@ mod compiled;
 mod forms;
 mod run;
 
-pub use run::{MethodName, RecordedCrossing, Simulation, SimulationError, SimulationOptions};
+pub use run::{
+    InitialCorrection, MethodName, RecordedCrossing, Settings, Setup, Simulation, SimulationError,
+    StopEvent,
+};

@@ -4,7 +4,7 @@
 use std::fmt;
 
 use cas::ParseContext;
-use model::Model;
+use mechanics::{Equations, System};
 use std::cell::RefCell;
 
 use numeric::{
@@ -50,29 +50,105 @@ impl fmt::Display for MethodName {
     }
 }
 
-/// Settings of one run; `None` takes the model's `simulate` statement, then the default.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct SimulationOptions {
-    /// The method (default: the model's, else dopri5).
-    pub method: Option<MethodName>,
-    /// Start time (default: the model's `from`, else 0).
-    pub t_start: Option<f64>,
-    /// End time (default: the model's `to`; required).
-    pub t_end: Option<f64>,
-    /// Relative tolerance (default: the model's, else 1e-8).
-    pub rtol: Option<f64>,
-    /// Absolute tolerance (default: the model's, else 1e-10).
-    pub atol: Option<f64>,
-    /// Output step (default: the model's `step`, else every accepted step).
+/// The resolved settings of one run (the caller merges the user's options with the model's
+/// `simulate` statement and the defaults; [`Settings::new`] gives the defaults).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// The method.
+    pub method: MethodName,
+    /// Start time.
+    pub t_start: f64,
+    /// End time.
+    pub t_end: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+    /// Time between output rows (`None`: every accepted step).
     pub output_step: Option<f64>,
-    /// The integration step: fixed for gauss, initial for dopri5 (default: chosen).
+    /// The integration step: fixed for gauss, initial for dopri5 (`None`: chosen).
     pub step: Option<f64>,
-    /// Stop where this expression of `t`, the coordinates (`q`) and rates (`q_d`) crosses zero.
-    pub stop_when: Option<String>,
-    /// Further stop events, after `stop_when`'s: expressions of `t`, `q`, `q̇` that stop the run
-    /// where they cross zero (a one-sided reaction — a contact's normal force, a rope's
-    /// tension — whose sign change means the constraint is lost).
-    pub stop_events: Vec<cas::Expr>,
+}
+
+impl Settings {
+    /// dopri5 from 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, a row every accepted step.
+    #[must_use]
+    pub fn new(t_end: f64) -> Settings {
+        Settings {
+            method: MethodName::Dopri5,
+            t_start: 0.0,
+            t_end,
+            rtol: 1e-8,
+            atol: 1e-10,
+            output_step: None,
+            step: None,
+        }
+    }
+
+    /// Checks every number: finite, positive where it must be, the span not empty.
+    ///
+    /// # Errors
+    /// [`SimulationError::InvalidSetting`] naming the setting.
+    pub fn validate(&self) -> Result<(), SimulationError> {
+        check_setting("start time", self.t_start, f64::is_finite, "must be finite")?;
+        let t_start = self.t_start;
+        check_setting(
+            "end time",
+            self.t_end,
+            |x| x.is_finite() && x != t_start,
+            "must be finite and differ from the start time",
+        )?;
+        check_setting(
+            "rtol",
+            self.rtol,
+            |x| x > 0.0 && x < 1.0,
+            "must be in (0, 1)",
+        )?;
+        check_setting(
+            "atol",
+            self.atol,
+            |x| x > 0.0 && x.is_finite(),
+            "must be positive",
+        )?;
+        let positive = |x: f64| x > 0.0 && x.is_finite();
+        if let Some(s) = self.output_step {
+            check_setting("output step", s, positive, "must be positive")?;
+        }
+        if let Some(s) = self.step {
+            check_setting("integration step", s, positive, "must be positive")?;
+        }
+        Ok(())
+    }
+}
+
+/// An event that stops a run where its expression crosses zero, by what it means.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StopEvent {
+    /// A condition the user wrote (an expression of `t`, the coordinates `q`, the rates
+    /// `q_d` and the parameters), parsed when the run is prepared.
+    Condition(String),
+    /// A one-sided constraint (a contact pushes, a rope pulls) is lost where its reaction
+    /// `value` (≥ 0 while it holds) crosses zero.
+    ContactLost {
+        /// The reaction's name in the model.
+        constraint: String,
+        /// The reaction along its one allowed direction, an expression of `t`, `q`, `q̇`.
+        value: cas::Expr,
+    },
+}
+
+/// Everything a run needs besides the equations: values, initial state, events.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Setup {
+    /// The numeric value of every parameter and every input held constant.
+    pub values: Vec<(String, f64)>,
+    /// Inputs given as functions of time: substituted into the equations before compiling.
+    pub timed_inputs: Vec<(String, cas::Expr)>,
+    /// The initial state: the coordinates, then their rates, in the order of
+    /// [`mechanics::Equations::coordinates`].
+    pub initial: Vec<f64>,
+    /// Events that stop the run, in this order ([`Simulation::stop_event`] reads them back).
+    pub stop_events: Vec<StopEvent>,
     /// Record (without stopping) every crossing of zero of these expressions of `t`, `q`,
     /// `q_d` and the parameters: [`Simulation::run_recording`] reports each with its
     /// direction, time and state.
@@ -82,7 +158,7 @@ pub struct SimulationOptions {
 /// A recorded zero crossing of a `record_when` expression.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RecordedCrossing<'a> {
-    /// Which `record_when` expression (its index in [`SimulationOptions::record_when`]).
+    /// Which `record_when` expression (its index in [`Setup::record_when`]).
     pub event: usize,
     /// From negative to positive (else from positive to negative).
     pub rising: bool,
@@ -94,15 +170,6 @@ pub struct RecordedCrossing<'a> {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SimulationError {
-    /// The equations could not be derived.
-    #[error(transparent)]
-    Mechanics(#[from] mechanics::MechanicsError),
-    /// The model could not be lowered.
-    #[error(transparent)]
-    Lower(#[from] model::LowerError),
-    /// No end time.
-    #[error("no end time: give --t-end, or write `simulate to T` in the model")]
-    NoEndTime,
     /// A setting is not a finite number, or out of range.
     #[error("invalid setting `{setting}`: {reason}")]
     InvalidSetting {
@@ -111,27 +178,33 @@ pub enum SimulationError {
         /// Why.
         reason: String,
     },
-    /// An unknown method name in the model's `simulate` statement.
-    #[error("unknown method `{name}` (available: dopri5, gauss, sdirk)")]
-    UnknownMethod {
-        /// The name.
-        name: String,
-    },
-    /// An expression needs a value that the model does not give.
-    #[error("{0}; give it a value in the model or with --set NAME=VALUE")]
+    /// An expression needs a value that was not given.
+    #[error("{0}; give it a value")]
     MissingValue(TapeError),
-    /// An initial value is not a number.
-    #[error("the initial value of `{coordinate}` is not a number")]
-    InitialValue {
-        /// The coordinate (with `'` for its rate).
-        coordinate: String,
+    /// The initial state does not have two numbers (position, rate) per coordinate.
+    #[error("the initial state has {given} numbers; {needed} are needed (the coordinates, then their rates)")]
+    InitialState {
+        /// How many were given.
+        given: usize,
+        /// How many are needed.
+        needed: usize,
     },
-    /// The `--stop-when` expression does not parse, or names something unknown.
-    #[error("--stop-when: {0}")]
-    StopWhen(String),
-    /// A `--record-when` expression does not parse, or names something unknown.
-    #[error("--record-when: {0}")]
-    RecordWhen(String),
+    /// A stop condition does not parse, or names something unknown.
+    #[error("stop condition `{text}`: {reason}")]
+    StopCondition {
+        /// The condition as written.
+        text: String,
+        /// What is wrong, with the column.
+        reason: String,
+    },
+    /// An expression to record does not parse, or names something unknown.
+    #[error("expression to record `{text}`: {reason}")]
+    RecordCondition {
+        /// The expression as written.
+        text: String,
+        /// What is wrong, with the column.
+        reason: String,
+    },
     /// The symplectic method needs an unconstrained system.
     #[error("gauss integrates Hamilton's equations and does not handle constraints kept with multipliers ({constraints}); use dopri5")]
     GaussWithConstraints {
@@ -141,6 +214,15 @@ pub enum SimulationError {
     /// The initial state could not be made consistent, or the equations fail there.
     #[error("at the initial state: {0}")]
     Initial(RhsError),
+}
+
+/// How the initial state was moved onto the constraints kept with multipliers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialCorrection {
+    /// The state as given: coordinates, then rates.
+    pub given: Vec<f64>,
+    /// The state on the constraints, from which the run starts.
+    pub corrected: Vec<f64>,
 }
 
 /// A prepared simulation: compiled equations, initial state, settings.
@@ -153,125 +235,93 @@ pub struct Simulation {
     t_end: f64,
     options: IntegratorOptions,
     initial: Vec<f64>,
+    correction: Option<InitialCorrection>,
     initial_energy: f64,
+    stop_events: Vec<StopEvent>,
+    record_when: Vec<String>,
 }
 
+/// Initial states that differ by less than this (relative to their size) are the same.
+const MOVED: f64 = 1e-9;
+
 impl Simulation {
-    /// Derives, compiles and sets up a run of `model` (overrides already applied).
+    /// Compiles `equations` with the values of `setup` and sets up a run of `settings`.
+    /// Nothing is derived here: the caller derives once and may prepare many runs.
     ///
     /// # Errors
     /// A [`SimulationError`] saying what is missing or wrong.
     pub fn prepare(
-        model: &Model,
-        options: &SimulationOptions,
+        system: &System,
+        equations: &Equations,
+        settings: &Settings,
+        setup: Setup,
     ) -> Result<Simulation, SimulationError> {
-        let settings = model.simulation();
-        let from_model = |e: Option<&model::Expr>| e.and_then(|e| model.evaluate_constant(e));
-        let method = match options.method {
-            Some(m) => m,
-            None => match settings.and_then(|s| s.method.as_ref()) {
-                Some(name) => {
-                    MethodName::parse(&name.name).ok_or_else(|| SimulationError::UnknownMethod {
-                        name: name.name.clone(),
-                    })?
-                }
-                None => MethodName::Dopri5,
-            },
-        };
-        let t_start = options
-            .t_start
-            .or_else(|| from_model(settings.and_then(|s| s.from.as_ref())))
-            .unwrap_or(0.0);
-        let t_end = options
-            .t_end
-            .or_else(|| from_model(settings.and_then(|s| s.to.as_ref())))
-            .ok_or(SimulationError::NoEndTime)?;
-        let rtol = options
-            .rtol
-            .or_else(|| from_model(settings.and_then(|s| s.rtol.as_ref())))
-            .unwrap_or(1e-8);
-        let atol = options
-            .atol
-            .or_else(|| from_model(settings.and_then(|s| s.atol.as_ref())))
-            .unwrap_or(1e-10);
-        let output_step = options
-            .output_step
-            .or_else(|| from_model(settings.and_then(|s| s.step.as_ref())));
-        check_setting(
-            "t-end",
-            t_end,
-            |x| x.is_finite() && x != t_start,
-            "must differ from the start time",
-        )?;
-        check_setting("t-start", t_start, f64::is_finite, "must be finite")?;
-        check_setting("rtol", rtol, |x| x > 0.0 && x < 1.0, "must be in (0, 1)")?;
-        check_setting(
-            "atol",
-            atol,
-            |x| x > 0.0 && x.is_finite(),
-            "must be positive",
-        )?;
-        if let Some(s) = output_step {
-            check_setting("step", s, |x| x > 0.0 && x.is_finite(), "must be positive")?;
-        }
-        if let Some(s) = options.step {
-            check_setting(
-                "integration step",
-                s,
-                |x| x > 0.0 && x.is_finite(),
-                "must be positive",
-            )?;
-        }
-
-        let system = model::lower(model)?;
-        let equations = mechanics::derive(&system)?;
+        settings.validate()?;
         let coordinates = equations.coordinates().to_vec();
-        if method == MethodName::Gauss && !equations.constraint_names().is_empty() {
+        let n = coordinates.len();
+        if setup.initial.len() != 2 * n {
+            return Err(SimulationError::InitialState {
+                given: setup.initial.len(),
+                needed: 2 * n,
+            });
+        }
+        if settings.method == MethodName::Gauss && !equations.constraint_names().is_empty() {
             return Err(SimulationError::GaussWithConstraints {
                 constraints: equations.constraint_names().join(", "),
             });
         }
-        let parameters = model.numeric_values();
-        let known = EventNames::new(&coordinates, &parameters);
+        let known = EventNames::new(&coordinates, &setup.values);
         let mut events = Vec::new();
-        if let Some(text) = &options.stop_when {
-            events.push(known.parse(text).map_err(SimulationError::StopWhen)?);
+        for event in &setup.stop_events {
+            events.push(match event {
+                StopEvent::Condition(text) => {
+                    known
+                        .parse(text)
+                        .map_err(|reason| SimulationError::StopCondition {
+                            text: text.clone(),
+                            reason,
+                        })?
+                }
+                StopEvent::ContactLost { value, .. } => *value,
+            });
         }
-        events.extend(options.stop_events.iter().copied());
         let stopping_events = events.len();
-        for text in &options.record_when {
-            events.push(known.parse(text).map_err(SimulationError::RecordWhen)?);
+        for text in &setup.record_when {
+            events.push(
+                known
+                    .parse(text)
+                    .map_err(|reason| SimulationError::RecordCondition {
+                        text: text.clone(),
+                        reason,
+                    })?,
+            );
         }
         let mut compiled = Compiled::new(
-            &system,
-            &equations,
-            &parameters,
+            system,
+            equations,
+            &setup.values,
+            &setup.timed_inputs,
             &events,
             stopping_events,
-            method == MethodName::Gauss,
+            settings.method == MethodName::Gauss,
         )
         .map_err(SimulationError::MissingValue)?;
 
-        let n = coordinates.len();
-        let mut initial = vec![0.0; 2 * n];
-        for (k, q) in coordinates.iter().enumerate() {
-            initial[k] =
-                model
-                    .initial_value(q, false)
-                    .ok_or_else(|| SimulationError::InitialValue {
-                        coordinate: q.clone(),
-                    })?;
-            initial[n + k] =
-                model
-                    .initial_value(q, true)
-                    .ok_or_else(|| SimulationError::InitialValue {
-                        coordinate: format!("{q}'"),
-                    })?;
-        }
+        let t_start = settings.t_start;
+        let given = setup.initial;
+        let mut initial = given.clone();
         // Constrained: start on the constraint manifold (positions, then velocities).
         SecondOrder::new(&mut compiled)
             .project(t_start, &mut initial)
             .map_err(SimulationError::Initial)?;
+        let moved = given
+            .iter()
+            .zip(&initial)
+            .any(|(a, b)| (a - b).abs() > MOVED * (1.0 + a.abs()));
+        let correction = moved.then(|| InitialCorrection {
+            given,
+            corrected: initial.clone(),
+        });
         let mut probe = vec![0.0; 2 * n];
         SecondOrder::new(&mut compiled)
             .rhs(t_start, &initial, &mut probe)
@@ -282,19 +332,40 @@ impl Simulation {
         Ok(Simulation {
             compiled,
             coordinates,
-            method,
+            method: settings.method,
             t_start,
-            t_end,
+            t_end: settings.t_end,
             options: IntegratorOptions {
-                rtol,
-                atol,
-                step: options.step,
-                output_step,
+                rtol: settings.rtol,
+                atol: settings.atol,
+                step: settings.step,
+                output_step: settings.output_step,
                 ..IntegratorOptions::default()
             },
             initial,
+            correction,
             initial_energy,
+            stop_events: setup.stop_events,
+            record_when: setup.record_when,
         })
+    }
+
+    /// The stop event of an [`numeric::StopReason::Event`]'s index.
+    #[must_use]
+    pub fn stop_event(&self, index: usize) -> Option<&StopEvent> {
+        self.stop_events.get(index)
+    }
+
+    /// The expressions recorded without stopping, as given.
+    #[must_use]
+    pub fn recorded(&self) -> &[String] {
+        &self.record_when
+    }
+
+    /// How the initial state was moved onto the constraints, when it was not on them.
+    #[must_use]
+    pub fn initial_correction(&self) -> Option<&InitialCorrection> {
+        self.correction.as_ref()
     }
 
     /// The names of the output columns: `t`, the coordinates, their rates `q_d`,

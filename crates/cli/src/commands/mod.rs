@@ -1,5 +1,6 @@
-//! The subcommands, one module each.
+//! The subcommands, one module each; what they share: loading a model with `--set` values.
 
+use lagrange::{cas, model};
 mod check;
 mod eom;
 mod equilibria;
@@ -7,14 +8,16 @@ mod expression;
 mod reactions;
 pub mod simulate;
 mod solve;
-mod sweep;
 
-use std::process::ExitCode;
+use std::path::Path;
+
+use lagrange::Analysis;
 
 use crate::args::Command;
+use crate::exit::{Exit, Failure};
 
-/// Runs one subcommand; the exit code says whether the input was good.
-pub fn run(command: Command) -> anyhow::Result<ExitCode> {
+/// Runs one subcommand.
+pub fn run(command: Command) -> Result<Exit, Failure> {
     match command {
         Command::Solve {
             model,
@@ -25,15 +28,13 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
         Command::Check { model } => check::run(&model),
         Command::Eom { model, format, set } => eom::run(&model, format, &set),
         Command::Reactions { model, format, set } => reactions::run(&model, format, &set),
-        Command::Equilibria { model, options } => {
-            equilibria::run(&model, &options, None, false, &[])
-        }
+        Command::Equilibria { model, options } => equilibria::run(&model, &options, None, None),
         Command::Linearize {
             model,
             options,
             equilibrium,
             initial,
-        } => equilibria::run_linearize(&model, &options, equilibrium, &initial),
+        } => equilibria::run(&model, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
         Command::Simplify {
             expr,
@@ -47,4 +48,42 @@ pub fn run(command: Command) -> anyhow::Result<ExitCode> {
             coords,
         } => expression::diff(&expr, &var, format, &coords),
     }
+}
+
+/// Reads the model file, prints its warnings, and applies `--set NAME=VALUE` in order.
+pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
+    let mut analysis = Analysis::from_file(path).map_err(|e| Failure::of(e, path))?;
+    if let Some(source) = analysis.source() {
+        if !source.model.warnings().is_empty() {
+            eprint!(
+                "{}",
+                model::render(
+                    source.model.warnings(),
+                    &path.display().to_string(),
+                    &source.text,
+                    render_options()
+                )
+            );
+        }
+    }
+    for item in set {
+        let assignment =
+            lagrange::parse_assignment(item).map_err(|e| Failure::input(format!("--set {e}")))?;
+        analysis
+            .set(&assignment)
+            .map_err(|e| Failure::input(format!("--set {item}: {e}")))?;
+    }
+    Ok(analysis)
+}
+
+/// Colour when stderr is a terminal.
+pub fn render_options() -> model::RenderOptions {
+    use std::io::IsTerminal;
+    model::RenderOptions::default().with_color(std::io::stderr().is_terminal())
+}
+
+/// `--set`'s values as a lookup for constant expressions in other flags (`--range x=0..2*l`).
+pub fn lookup(analysis: &Analysis) -> impl Fn(cas::Symbol) -> Option<f64> {
+    let values = analysis.values().unwrap_or_default();
+    move |s: cas::Symbol| values.iter().find(|(n, _)| n == s.name()).map(|(_, v)| *v)
 }

@@ -1,19 +1,19 @@
 //! `lagrange simulate MODEL`: integrate the equations of motion, write the time history as
-//! CSV, optionally plot it, and print a summary line (steps, rejected steps, evaluations, wall
-//! time, final energy error); optionally record zero crossings (`--record-when`, `--events`)
-//! and write the summary as JSON (`--summary`). A run that fails part-way keeps and writes
-//! what it computed, then says when and why it stopped and exits non-zero.
+//! CSV, optionally plot it, and print a summary line; optionally record zero crossings
+//! (`--record-when`, `--events`) and write the summary as JSON (`--summary`). A run that fails
+//! part-way keeps and writes what it computed, then says when and why it stopped. With
+//! `--sweep`, many runs on all cores, one CSV row each, from one derivation.
 
+use lagrange::report;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 use std::time::Instant;
 
-use anyhow::Context;
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use numeric::StopReason;
-use simulation::{MethodName, Simulation, SimulationOptions};
+use lagrange::{Analysis, Crossing, Ending, MethodName, RunSummary, SimulationOptions};
+
+use crate::exit::{check_output, output_error, Exit, Failure};
 
 /// Flags of `lagrange simulate`.
 #[derive(Args, Debug)]
@@ -97,8 +97,8 @@ pub enum MethodArg {
     Sdirk,
 }
 
-/// The integration settings the flags ask for.
-pub fn options(args: &SimulateArgs) -> SimulationOptions {
+/// The run options the flags ask for.
+fn options(args: &SimulateArgs) -> SimulationOptions {
     SimulationOptions {
         method: args.method.map(|m| match m {
             MethodArg::Dopri5 => MethodName::Dopri5,
@@ -112,106 +112,49 @@ pub fn options(args: &SimulateArgs) -> SimulationOptions {
         output_step: args.output_step,
         step: args.step,
         stop_when: args.stop_when.clone(),
-        stop_events: Vec::new(),
         record_when: args.record_when.clone(),
+        through_contact_loss: args.through_contact_loss,
     }
-}
-
-/// The settings of a run as the flags and the model ask for them, with the one-sided
-/// constraints the model asks about as stop events (unless `--through-contact-loss`): past
-/// the point where one is lost the equations describe a motion that cannot happen. Shared by
-/// single runs and sweeps. Returns the options and the names of those constraints.
-pub fn options_with_contacts(
-    args: &SimulateArgs,
-    model: &model::Model,
-    source: &str,
-) -> Result<(SimulationOptions, Vec<String>), ExitCode> {
-    let mut options = options(args);
-    let one_sided = if args.through_contact_loss {
-        Vec::new()
-    } else {
-        one_sided_reactions(&args.model, model, source)?
-    };
-    options.stop_events = one_sided.iter().map(|(_, value)| *value).collect();
-    Ok((
-        options,
-        one_sided.into_iter().map(|(name, _)| name).collect(),
-    ))
-}
-
-/// What stopped a run at a stop event.
-pub enum StopCause<'a> {
-    /// The `--stop-when` expression crossed zero.
-    StopWhen,
-    /// The one-sided constraint of that name is lost.
-    ContactLost(&'a str),
-}
-
-/// Which stop event `index` is: `--stop-when`'s comes first, then the contacts.
-pub fn stop_cause<'a>(args: &SimulateArgs, contacts: &'a [String], index: usize) -> StopCause<'a> {
-    let first_contact = usize::from(args.stop_when.is_some());
-    match index
-        .checked_sub(first_contact)
-        .and_then(|k| contacts.get(k))
-    {
-        Some(name) => StopCause::ContactLost(name),
-        None => StopCause::StopWhen,
-    }
-}
-
-/// The one-sided reactions the model asks for (contacts push, ropes pull), as stop events:
-/// `(name, value)` with `value ≥ 0` while the constraint holds.
-fn one_sided_reactions(
-    path: &Path,
-    model: &model::Model,
-    source: &str,
-) -> Result<Vec<(String, cas::Expr)>, ExitCode> {
-    if model.reactions().is_empty() && model.releases().is_empty() {
-        return Ok(Vec::new());
-    }
-    let Ok(system) = model::lower(model) else {
-        return Ok(Vec::new());
-    };
-    let Some(computed) = super::reactions::compute(path, model, source, &system, None)? else {
-        return Ok(Vec::new());
-    };
-    Ok(computed
-        .reactions
-        .iter()
-        .filter_map(|r| r.along.map(|(value, _)| (r.name.clone(), value)))
-        .collect())
 }
 
 /// Runs `lagrange simulate`.
-pub fn run(args: &SimulateArgs) -> anyhow::Result<ExitCode> {
-    let (model, source) = match super::check::load_with_overrides(&args.model, &args.set)? {
-        Ok(loaded) => loaded,
-        Err(code) => return Ok(code),
-    };
-    let (options, contacts) = match options_with_contacts(args, &model, &source) {
-        Ok(prepared) => prepared,
-        Err(code) => return Ok(code),
-    };
-    if !args.sweep.is_empty() {
-        return super::sweep::run(args, &model, &options, &contacts);
+pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
+    let analysis = super::load(&args.model, &args.set)?;
+    for file in [&args.out, &args.events, &args.summary, &args.plot]
+        .into_iter()
+        .flatten()
+    {
+        check_output(file, &args.model)?;
     }
-    let mut simulation = match Simulation::prepare(&model, &options) {
-        Ok(s) => s,
-        Err(error) => {
-            eprintln!("error: {error}");
-            return Ok(ExitCode::from(1));
-        }
-    };
+    let options = options(args);
+    if !args.sweep.is_empty() {
+        return sweep(args, &analysis, &options);
+    }
     if let Some(path) = &args.plot {
         // Refuse a bad plot name before the run rather than after it.
         let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
         if !ext.eq_ignore_ascii_case("svg") && !ext.eq_ignore_ascii_case("png") {
-            eprintln!(
-                "error: cannot plot to `{}`: the file name must end in .svg or .png",
-                display(path)
-            );
-            return Ok(ExitCode::from(2));
+            return Err(Failure::input(format!(
+                "cannot plot to `{}`: the file name must end in .svg or .png",
+                path.display()
+            )));
         }
+    }
+    let mut simulation = analysis
+        .simulation(&options)
+        .map_err(|e| failure(e, args))?;
+    if let Some(c) = simulation.initial_correction() {
+        let columns = simulation.columns();
+        let moved: Vec<String> = columns[1..]
+            .iter()
+            .zip(c.given.iter().zip(&c.corrected))
+            .filter(|(_, (a, b))| a != b)
+            .map(|(name, (a, b))| format!("{name} = {a} → {b}"))
+            .collect();
+        eprintln!(
+            "warning: the initial state does not satisfy the constraints; the run starts from the nearest state that does: {}",
+            moved.join(", ")
+        );
     }
     // Every output file is created before the run, so a bad path fails before a long run.
     let mut writer: Box<dyn Write> = match &args.out {
@@ -222,28 +165,23 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<ExitCode> {
     let summary_writer = args.summary.as_deref().map(create).transpose()?;
     let columns = simulation.columns();
     let n = (columns.len() - 3) / 2;
-    writeln!(writer, "{}", columns.join(","))?;
-    if let Some(w) = events_writer.as_mut() {
-        writeln!(w, "event,direction,{}", columns[..=2 * n].join(","))?;
-    }
+    let csv = |e: std::io::Error| output_error("the CSV", &e);
+    writeln!(writer, "{}", columns.join(",")).map_err(csv)?;
     let mut write_error = None;
     let mut last_row: Vec<f64> = Vec::new();
     let mut kept: Vec<Vec<f64>> = Vec::new();
-    let mut crossings: Vec<(usize, bool, Vec<f64>)> = Vec::new();
+    let mut crossings: Vec<Crossing> = Vec::new();
     let mut row_count = 0u64;
     let mut max_drift = 0.0f64;
-    let keep = args.plot.is_some();
     let (t_start, t_end) = simulation.span();
     let mut progress: Option<ProgressBar> = None;
     let started = Instant::now();
     let outcome = simulation.run_recording(
         &mut |row| {
             if write_error.is_none() {
-                if let Err(e) = write_row(&mut writer, row) {
-                    write_error = Some(e);
-                }
+                write_error = write_row(&mut writer, row).err();
             }
-            if keep {
+            if args.plot.is_some() {
                 kept.push(row.to_vec());
             }
             row_count += 1;
@@ -259,45 +197,39 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<ExitCode> {
             // A progress bar only for runs long enough to need one; indicatif hides it when
             // stderr is not a terminal.
             if progress.is_none() && started.elapsed().as_secs_f64() > 0.5 {
-                progress = Some(progress_bar());
+                progress = Some(bar(
+                    "simulating {bar:40} {percent:>3}% ({elapsed}, eta {eta})",
+                ));
             }
             if let Some(bar) = &progress {
                 let fraction = ((row[0] - t_start) / (t_end - t_start)).clamp(0.0, 1.0);
                 bar.set_position((fraction * 1000.0) as u64);
             }
         },
-        &mut |crossing| {
-            crossings.push((
-                crossing.event,
-                crossing.rising,
-                crossing.row[..=2 * n].to_vec(),
-            ));
+        &mut |c| {
+            crossings.push(Crossing {
+                event: c.event,
+                rising: c.rising,
+                state: c.row[..=2 * n].to_vec(),
+            });
         },
     );
     let elapsed = started.elapsed();
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }
-    writer.flush()?;
-    drop(writer);
     if let Some(error) = write_error {
-        return Err(error).context("cannot write the CSV");
+        return Err(csv(error));
     }
-    if let Some(mut w) = events_writer {
-        for (event, rising, row) in &crossings {
-            write!(
-                w,
-                "{},{},",
-                csv_text(&args.record_when[*event]),
-                direction(*rising)
-            )?;
-            write_row(&mut w, row)?;
-        }
-        w.flush().context("cannot write the events")?;
+    writer.flush().map_err(csv)?;
+    drop(writer);
+    if let Some(w) = events_writer.as_mut() {
+        write_events(w, &columns[..=2 * n], &args.record_when, &crossings)
+            .map_err(|e| output_error("the events", &e))?;
     }
     let energy_error = last_row.iter().rev().nth(1).copied().unwrap_or(f64::NAN);
     let stats = outcome.stats;
-    let summary = format!(
+    eprintln!(
         "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {energy_error:.3e}",
         method = simulation.method(),
         t = outcome.t,
@@ -306,163 +238,214 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<ExitCode> {
         evals = stats.evaluations,
         wall = format_duration(elapsed.as_secs_f64()),
     );
-    eprintln!("{summary}");
     if !args.record_when.is_empty() {
         eprintln!("{}", crossings_line(&args.record_when, &crossings));
     }
-    let outcome_json = outcome_json(args, &contacts, &outcome);
     if let Some(mut w) = summary_writer {
-        let integrator = simulation.integrator_options();
-        let summary = serde_json::json!({
-            "schema": 1,
-            "model": display(&args.model),
-            "method": simulation.method().to_string(),
-            "rtol": integrator.rtol,
-            "atol": integrator.atol,
-            "step": integrator.step,
-            "output_step": integrator.output_step,
-            "t_start": t_start,
-            "t_end": t_end,
-            "t_reached": outcome.t,
-            "outcome": outcome_json,
-            "steps": stats.steps,
-            "rejected_steps": stats.rejected,
-            "rhs_evaluations": stats.evaluations,
-            "wall_time_s": elapsed.as_secs_f64(),
-            "rows": row_count,
-            "final_energy_error": energy_error,
-            "max_constraint_drift": max_drift,
-            "events": crossings
-                .iter()
-                .map(|(event, rising, row)| {
-                    let state: serde_json::Map<String, serde_json::Value> = columns[1..=2 * n]
-                        .iter()
-                        .zip(&row[1..])
-                        .map(|(name, value)| (name.clone(), serde_json::json!(value)))
-                        .collect();
-                    serde_json::json!({
-                        "event": args.record_when[*event],
-                        "direction": direction(*rising),
-                        "t": row[0],
-                        "state": state,
-                    })
-                })
-                .collect::<Vec<_>>(),
-        });
-        serde_json::to_writer_pretty(&mut w, &summary)?;
-        writeln!(w)?;
-        w.flush().context("cannot write the summary")?;
+        let summary = RunSummary {
+            simulation: &simulation,
+            outcome: &outcome,
+            wall_time: elapsed.as_secs_f64(),
+            rows: row_count,
+            energy_error,
+            max_drift,
+            crossings: &crossings,
+        };
+        let text = super::eom::json(&summary.to_json(&args.model.display().to_string()));
+        writeln!(w, "{text}")
+            .and_then(|()| w.flush())
+            .map_err(|e| output_error("the summary", &e))?;
     }
     for path in [&args.out, &args.events, &args.summary]
         .into_iter()
         .flatten()
     {
-        eprintln!("wrote {}", display(path));
+        eprintln!("wrote {}", path.display());
     }
     if let Some(path) = &args.plot {
-        let title = format!(
-            "{} — {}",
-            args.model
-                .file_stem()
-                .map_or_else(String::new, |s| s.to_string_lossy().into_owned()),
-            simulation.method()
-        );
-        match report::plot_run(path, &title, &columns, &kept) {
-            Ok(()) => eprintln!("wrote {}", display(path)),
-            Err(error) => {
-                eprintln!("error: {error}");
-                return Ok(ExitCode::from(1));
-            }
-        }
+        let title = format!("{} — {}", stem(&args.model), simulation.method());
+        report::plot_run(path, &title, &columns, &kept)
+            .map_err(|e| Failure::new(Exit::Output, e))?;
+        eprintln!("wrote {}", path.display());
     }
-    match outcome.stop {
-        StopReason::Finished => Ok(ExitCode::SUCCESS),
-        StopReason::Event { t, index } => {
-            match stop_cause(args, &contacts, index) {
-                StopCause::ContactLost(name) => eprintln!(
-                    "stopped at t = {t}: the one-sided constraint `{name}` is lost there (its reaction changes sign); run with --through-contact-loss to go on regardless"
-                ),
-                StopCause::StopWhen => {
-                    eprintln!("stopped at t = {t}: --stop-when expression crossed zero");
-                }
-            }
-            Ok(ExitCode::SUCCESS)
+    Ok(match Ending::of(&simulation, &outcome) {
+        Ending::Finished => Exit::Success,
+        Ending::ContactLost { constraint } => {
+            eprintln!(
+                "stopped at t = {}: the one-sided constraint `{constraint}` is lost there (its reaction changes sign); run with --through-contact-loss to go on regardless",
+                outcome.t
+            );
+            Exit::Success
         }
-        StopReason::Failed(failure) => {
+        Ending::Condition { .. } => {
+            eprintln!(
+                "stopped at t = {}: --stop-when expression crossed zero",
+                outcome.t
+            );
+            Exit::Success
+        }
+        Ending::Failed(failure) => {
             eprintln!("error: the simulation stopped {failure}; the rows computed up to then were written");
-            Ok(ExitCode::from(3))
+            Exit::RunFailed
         }
-        _ => Ok(ExitCode::from(3)),
+        _ => Exit::RunFailed,
+    })
+}
+
+/// A library error, with the flag named where it comes from one.
+fn failure(error: lagrange::Error, args: &SimulateArgs) -> Failure {
+    use lagrange::simulation::SimulationError as S;
+    match &error {
+        lagrange::Error::Simulation(S::StopCondition { reason, .. }) => {
+            Failure::input(format!("--stop-when: {reason}"))
+        }
+        lagrange::Error::Simulation(S::RecordCondition { reason, .. }) => {
+            Failure::input(format!("--record-when: {reason}"))
+        }
+        _ => Failure::of(error, &args.model),
     }
 }
 
-/// How a run ended, for `--summary`: `kind` is `finished`, `event` (`--stop-when`),
-/// `contact_lost` (with `constraint`) or `failed` (with `reason`).
-fn outcome_json(
+/// `--sweep`: many runs from one derivation, one CSV row each.
+fn sweep(
     args: &SimulateArgs,
-    contacts: &[String],
-    outcome: &numeric::Outcome,
-) -> serde_json::Value {
-    match outcome.stop {
-        StopReason::Event { t, index } => match stop_cause(args, contacts, index) {
-            StopCause::StopWhen => serde_json::json!({
-                "kind": "event", "t": t, "event": args.stop_when,
-            }),
-            StopCause::ContactLost(name) => serde_json::json!({
-                "kind": "contact_lost", "t": t, "constraint": name,
-            }),
-        },
-        StopReason::Failed(failure) => {
-            // The failure reads "at t = …: why"; the time is a field of its own.
-            let text = failure.to_string();
-            let reason = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
-            serde_json::json!({
-                "kind": "failed", "t": failure_time(&failure).unwrap_or(outcome.t), "reason": reason,
-            })
-        }
-        _ => serde_json::json!({ "kind": "finished", "t": outcome.t }),
+    analysis: &Analysis,
+    options: &SimulationOptions,
+) -> Result<Exit, Failure> {
+    if args.plot.is_some() {
+        return Err(Failure::input(
+            "--plot draws one run; leave it out of a --sweep",
+        ));
     }
+    if !args.record_when.is_empty() || args.events.is_some() || args.summary.is_some() {
+        return Err(Failure::input(
+            "--record-when, --events and --summary describe one run; leave them out of a --sweep",
+        ));
+    }
+    let lookup = super::lookup(analysis);
+    let ranges = args
+        .sweep
+        .iter()
+        .map(|s| lagrange::parse_range(s, &lookup))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| Failure::input(format!("--sweep {e}")))?;
+    let runs = match (args.samples, ranges.as_slice()) {
+        (Some(count), _) => lagrange::samples(&ranges, count, args.seed)
+            .map_err(|_| Failure::input("--samples must be at least 1"))?,
+        (None, [range]) => lagrange::grid(range, args.steps),
+        (None, _) => {
+            return Err(Failure::input(
+                "several --sweep ranges need --samples N (Monte-Carlo); a grid sweeps one name",
+            ))
+        }
+    };
+    let names: Vec<String> = ranges.iter().map(|r| r.name.clone()).collect();
+    let progress = bar("{bar:40} {pos}/{len} runs, {elapsed} (eta {eta})");
+    progress.set_length(runs.len() as u64);
+    let started = Instant::now();
+    let results = analysis
+        .sweep(options, &names, &runs, &|| progress.inc(1))
+        .map_err(|e| failure(e, args).prefixed("--sweep"))?;
+    progress.finish_and_clear();
+    let columns = analysis
+        .simulation(options)
+        .map_or_else(|_| Vec::new(), |s| s.columns());
+    let mut writer: Box<dyn Write> = match &args.out {
+        Some(path) => Box::new(create(path)?),
+        None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
+    };
+    let mut text = String::new();
+    let mut header: Vec<String> = vec!["run".into()];
+    header.extend(names.iter().cloned());
+    header.extend(columns.iter().map(|c| format!("final_{c}")));
+    header.extend(["steps".into(), "outcome".into()]);
+    text.push_str(&header.join(","));
+    text.push('\n');
+    let mut failed = 0;
+    for (k, (values, result)) in runs.iter().zip(&results).enumerate() {
+        let mut row: Vec<String> = vec![k.to_string()];
+        row.extend(values.iter().map(|v| format!("{v:?}")));
+        match result {
+            Ok(r) => {
+                failed += usize::from(matches!(r.ending, Ending::Failed(_)));
+                row.extend(r.last.iter().map(|v| format!("{v:?}")));
+                row.extend(std::iter::repeat_n(
+                    String::new(),
+                    columns.len().saturating_sub(r.last.len()),
+                ));
+                row.push(r.steps.to_string());
+                row.push(format!("\"{}\"", r.ending.word().replace('"', "'")));
+            }
+            Err(e) => {
+                failed += 1;
+                row.extend(std::iter::repeat_n(String::new(), columns.len() + 1));
+                row.push(format!("\"error: {}\"", e.to_string().replace('"', "'")));
+            }
+        }
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    writer
+        .write_all(text.as_bytes())
+        .and_then(|()| writer.flush())
+        .map_err(|e| output_error("the CSV", &e))?;
+    eprintln!(
+        "{} runs on {} threads in {:.2} s ({} derivation), {failed} failed",
+        runs.len(),
+        rayon_threads(),
+        started.elapsed().as_secs_f64(),
+        analysis.derivations()
+    );
+    if let Some(path) = &args.out {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(if failed > 0 {
+        Exit::RunFailed
+    } else {
+        Exit::Success
+    })
 }
 
-fn failure_time(failure: &numeric::Failure) -> Option<f64> {
-    match *failure {
-        numeric::Failure::Rhs { t, .. }
-        | numeric::Failure::StepUnderflow { t, .. }
-        | numeric::Failure::NotConverged { t, .. }
-        | numeric::Failure::TooManySteps { t, .. } => Some(t),
-        _ => None,
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, usize::from)
+}
+
+fn write_events(
+    w: &mut dyn Write,
+    columns: &[String],
+    expressions: &[String],
+    crossings: &[Crossing],
+) -> std::io::Result<()> {
+    writeln!(w, "event,direction,{}", columns.join(","))?;
+    for c in crossings {
+        let name = expressions.get(c.event).map_or("", String::as_str);
+        write!(w, "{},{},", csv_text(name), lagrange::direction(c.rising))?;
+        write_row(w, &c.state)?;
     }
+    w.flush()
 }
 
 /// The stderr line about recorded crossings: how many, and the first few.
-fn crossings_line(expressions: &[String], crossings: &[(usize, bool, Vec<f64>)]) -> String {
+fn crossings_line(expressions: &[String], crossings: &[Crossing]) -> String {
     const SHOWN: usize = 4;
     let mut line = format!(
         "recorded {} crossing{}",
         crossings.len(),
         if crossings.len() == 1 { "" } else { "s" }
     );
-    for (k, (event, rising, row)) in crossings.iter().take(SHOWN).enumerate() {
+    for (k, c) in crossings.iter().take(SHOWN).enumerate() {
         line.push_str(if k == 0 { ": " } else { ", " });
         line.push_str(&format!(
             "`{}` {} at t = {:.6}",
-            expressions[*event],
-            direction(*rising),
-            row[0]
+            expressions.get(c.event).map_or("", String::as_str),
+            lagrange::direction(c.rising),
+            c.state[0]
         ));
     }
     if crossings.len() > SHOWN {
         line.push_str(&format!(", … ({} more)", crossings.len() - SHOWN));
     }
     line
-}
-
-fn direction(rising: bool) -> &'static str {
-    if rising {
-        "rising"
-    } else {
-        "falling"
-    }
 }
 
 /// A CSV field: quoted (with quotes doubled) when it holds a comma, a quote or a line break.
@@ -474,18 +457,15 @@ fn csv_text(text: &str) -> String {
     }
 }
 
-fn create(path: &Path) -> anyhow::Result<std::io::BufWriter<std::fs::File>> {
-    Ok(std::io::BufWriter::new(
-        std::fs::File::create(path)
-            .with_context(|| format!("cannot create `{}`", path.display()))?,
-    ))
+fn create(path: &Path) -> Result<std::io::BufWriter<std::fs::File>, Failure> {
+    std::fs::File::create(path)
+        .map(std::io::BufWriter::new)
+        .map_err(|e| Failure::input(format!("cannot create `{}`: {e}", path.display())))
 }
 
-fn progress_bar() -> ProgressBar {
+fn bar(template: &str) -> ProgressBar {
     let bar = ProgressBar::new(1000);
-    if let Ok(style) =
-        ProgressStyle::with_template("simulating {bar:40} {percent:>3}% ({elapsed}, eta {eta})")
-    {
+    if let Ok(style) = ProgressStyle::with_template(template) {
         bar.set_style(style);
     }
     bar
@@ -512,6 +492,7 @@ fn format_duration(seconds: f64) -> String {
     }
 }
 
-fn display(path: &Path) -> String {
-    path.display().to_string()
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }

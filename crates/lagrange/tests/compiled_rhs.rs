@@ -7,8 +7,8 @@
 //! coefficients reach 1e77; the run blew up at t ≈ 1e-36 and then crawled. Parameters are now
 //! folded as floats, which the normal form leaves inside the function.
 
-use cas::Symbol;
-use simulation::{Simulation, SimulationOptions};
+use lagrange::cas::{self, Symbol};
+use lagrange::{numeric, Analysis, SimulationOptions};
 
 fn examples() -> Vec<std::path::PathBuf> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
@@ -33,10 +33,8 @@ fn compiled_rhs_matches_direct_evaluation_of_the_equations_on_every_example() {
         -1.0 + 2.0 * ((state_seed >> 11) as f64 / (1u64 << 53) as f64)
     };
     for path in examples() {
-        let source = std::fs::read_to_string(&path).unwrap();
-        let model = model::load(&source).unwrap();
-        let system = model::lower(&model).unwrap();
-        let equations = mechanics::derive(&system).unwrap();
+        let analysis = Analysis::from_file(&path).unwrap();
+        let equations = analysis.equations().unwrap();
         if !equations.constraint_names().is_empty() {
             continue;
         }
@@ -44,12 +42,12 @@ fn compiled_rhs_matches_direct_evaluation_of_the_equations_on_every_example() {
             t_end: Some(1.0),
             ..SimulationOptions::default()
         };
-        let Ok(mut simulation) = Simulation::prepare(&model, &options) else {
+        let Ok(mut simulation) = analysis.simulation(&options) else {
             continue;
         };
         let names = equations.coordinates().to_vec();
         let n = names.len();
-        let parameters = model.numeric_values();
+        let parameters = analysis.values().unwrap();
         for _ in 0..5 {
             let state: Vec<f64> = (0..2 * n).map(|_| 2.0 * next()).collect();
             let t = 1.5 * next().abs();

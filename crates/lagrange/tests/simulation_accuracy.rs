@@ -3,24 +3,22 @@
 //! tools/scipy_reference/run.sh), energy over 10⁴ periods with the symplectic method, and
 //! constraint drift with projection.
 
-use simulation::{MethodName, Simulation, SimulationOptions};
+use lagrange::{numeric, Analysis, MethodName, SimulationOptions};
 
 fn root(path: &str) -> String {
     format!("{}/../../{path}", env!("CARGO_MANIFEST_DIR"))
 }
 
-fn model(example: &str, overrides: &[(&str, f64)]) -> model::Model {
-    let source = std::fs::read_to_string(root(example)).unwrap();
-    let model = model::load(&source).unwrap();
-    let overrides: Vec<(String, f64)> = overrides
-        .iter()
-        .map(|(n, v)| ((*n).to_owned(), *v))
-        .collect();
-    model.with_overrides(&overrides).unwrap()
+fn model(example: &str, overrides: &[(&str, f64)]) -> Analysis {
+    let mut analysis = Analysis::from_file(std::path::Path::new(&root(example))).unwrap();
+    for (name, value) in overrides {
+        analysis.set_value(name, *value).unwrap();
+    }
+    analysis
 }
 
-fn run(model: &model::Model, options: &SimulationOptions) -> (Vec<String>, Vec<Vec<f64>>) {
-    let mut simulation = Simulation::prepare(model, options).unwrap();
+fn run(analysis: &Analysis, options: &SimulationOptions) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut simulation = analysis.simulation(options).unwrap();
     let mut rows = Vec::new();
     let outcome = simulation.run(&mut |row| rows.push(row.to_vec()));
     assert_eq!(outcome.stop, numeric::StopReason::Finished);

@@ -1,22 +1,21 @@
 //! Times one right-hand side evaluation (tape + `M q̈ = f` solve) of a model at its initial
-//! state, for `bench/simulate/run.sh`: `cargo run --release -p lagrange-simulation --example
+//! state, for `bench/simulate/run.sh`: `cargo run --release -p lagrange --example
 //! rhs_timing -- MODEL [CALLS]` prints `rhs_ns=… instructions=…`.
 
 use std::time::Instant;
 
-use simulation::{Simulation, SimulationOptions};
+use lagrange::{numeric, Analysis, SimulationOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let path = args.next().ok_or("usage: rhs_timing MODEL [CALLS]")?;
     let calls: u32 = args.next().map_or(Ok(1_000_000), |s| s.parse())?;
-    let source = std::fs::read_to_string(&path)?;
-    let model = model::load(&source).map_err(|d| format!("{} errors in the model", d.0.len()))?;
+    let analysis = Analysis::from_file(std::path::Path::new(&path))?;
     let options = SimulationOptions {
         t_end: Some(10.0),
         ..SimulationOptions::default()
     };
-    let mut simulation = Simulation::prepare(&model, &options)?;
+    let mut simulation = analysis.simulation(&options)?;
     let state = simulation.initial_state().to_vec();
     let mut derivative = vec![0.0; state.len()];
     let best = simulation.with_rhs(|system| -> Result<f64, numeric::RhsError> {

@@ -1,0 +1,142 @@
+//! The exit-code contract of every command (docs/cli.md), and the failure that carries a
+//! code and its message up to `main`.
+
+use lagrange::model;
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::process::ExitCode;
+
+use lagrange::{Error, ErrorKind};
+
+/// The exit codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Exit {
+    /// The work was done.
+    Success = 0,
+    /// The user's input is wrong: the model, a flag, a value, a file name.
+    Input = 1,
+    /// Degenerate or unsupported mechanics (a singular mass matrix, conflicting constraints).
+    Mechanics = 2,
+    /// A simulation stopped before its end because the integration failed (rows kept).
+    RunFailed = 3,
+    /// lagrange disagrees with itself: a bug.
+    Internal = 4,
+    /// The output could not be written (a full disk, a closed stream).
+    Output = 5,
+}
+
+impl From<Exit> for ExitCode {
+    fn from(exit: Exit) -> ExitCode {
+        ExitCode::from(exit as u8)
+    }
+}
+
+/// A command that did not succeed: its code and what to print (already printed when empty).
+#[derive(Debug)]
+pub struct Failure {
+    /// The exit code.
+    pub code: Exit,
+    /// The whole message (`error: …`, or rendered diagnostics).
+    pub message: String,
+}
+
+impl Failure {
+    /// A failure of this kind; the message is printed after `error: `.
+    pub fn new(code: Exit, message: impl std::fmt::Display) -> Failure {
+        Failure {
+            code,
+            message: format!("error: {message}"),
+        }
+    }
+
+    /// The user's mistake.
+    pub fn input(message: impl std::fmt::Display) -> Failure {
+        Failure::new(Exit::Input, message)
+    }
+
+    /// A library error about the model file `path`.
+    pub fn of(error: Error, path: &Path) -> Failure {
+        let file = path.display().to_string();
+        let code = match error.kind() {
+            ErrorKind::Input => Exit::Input,
+            ErrorKind::Internal => Exit::Internal,
+            _ => Exit::Mechanics,
+        };
+        let message = match &error {
+            Error::Model(errors) => {
+                let options =
+                    model::RenderOptions::default().with_color(std::io::stderr().is_terminal());
+                let count = errors.error_count();
+                format!(
+                    "{}{file}: {count} error{} found",
+                    errors.render(&file, options),
+                    if count == 1 { "" } else { "s" }
+                )
+            }
+            Error::Located {
+                message,
+                line,
+                column,
+                ..
+            } => format!("error: {file}:{line}:{column}: {message}"),
+            Error::Read { .. } => format!("error: {error}"),
+            _ => format!("error: {file}: {error}"),
+        };
+        Failure { code, message }
+    }
+
+    /// The same failure with `what: ` before its message (a flag's name).
+    #[must_use]
+    pub fn prefixed(mut self, what: &str) -> Failure {
+        if let Some(rest) = self.message.strip_prefix("error: ") {
+            self.message = format!("error: {what}: {rest}");
+        }
+        self
+    }
+
+    /// Prints the message and gives the exit code.
+    pub fn report(self) -> ExitCode {
+        if !self.message.is_empty() {
+            let mut err = std::io::stderr().lock();
+            let _ = writeln!(err, "{}", self.message.trim_end());
+        }
+        self.code.into()
+    }
+}
+
+/// Writes `text` to standard output; a write error (a full disk) is [`Exit::Output`].
+pub fn print(text: &str) -> Result<(), Failure> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| output_error("standard output", &e))
+}
+
+/// [`print`] with a line break.
+pub fn println(text: &str) -> Result<(), Failure> {
+    print(&format!("{}\n", text.trim_end_matches('\n')))
+}
+
+/// A write error on `what`.
+pub fn output_error(what: &str, error: &std::io::Error) -> Failure {
+    Failure::new(Exit::Output, format!("cannot write {what}: {error}"))
+}
+
+/// Refuses an output file that is the model itself; says on stderr when an existing file is
+/// replaced.
+pub fn check_output(file: &Path, model: &Path) -> Result<(), Failure> {
+    let same = match (file.canonicalize(), model.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(Failure::input(format!(
+            "`{}` is the model file: lagrange never writes over its input; choose another name",
+            file.display()
+        )));
+    }
+    if file.exists() {
+        eprintln!("replacing {}", file.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,196 @@
+//! Equilibria of an [`Analysis`] with their stability, the linearized dynamics about each,
+//! steady motions (cyclic coordinates spinning at a set rate) and parameter sweeps.
+
+use mechanics::equilibria::{
+    find_equilibria, spin_rate, steady_equations, EquilibriumSet, RestEquations, Values,
+};
+use mechanics::linearize::{linear_model, linearize_at, LinearModel, LinearizeError, Linearized};
+
+use crate::assign::{AssignmentError, Range};
+use crate::{Analysis, Error};
+
+/// The search range of a coordinate that is not an angle, unless one is given.
+pub const DEFAULT_RANGE: (f64, f64) = (-10.0, 10.0);
+
+/// How to look for equilibria.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Search {
+    /// Cyclic coordinates turning at a constant rate: `(coordinate, rate)`; their relative
+    /// equilibria are found, with stability by Routh's reduced potential. The rate is then
+    /// the parameter `q_d` (which a sweep may vary).
+    pub steady: Vec<(String, f64)>,
+    /// Search ranges of coordinates that are not angles (default [`DEFAULT_RANGE`]).
+    pub ranges: Vec<Range>,
+}
+
+/// The equilibria found, and the linearized dynamics about each.
+#[derive(Debug, Clone)]
+pub struct Equilibria {
+    /// The rest (or steady-motion) equations.
+    pub rest: RestEquations,
+    /// The equilibria, with how completely they were found.
+    pub set: EquilibriumSet,
+    /// The linearization about each equilibrium, in the same order.
+    pub linearized: Vec<Result<Linearized, LinearizeError>>,
+    /// The inputs, in the order of the columns of `B0`.
+    pub inputs: Vec<String>,
+}
+
+/// One step of a parameter sweep.
+#[derive(Debug, Clone)]
+pub struct SweepStep {
+    /// The parameter's value.
+    pub value: f64,
+    /// The equilibria there.
+    pub set: EquilibriumSet,
+    /// The linearization about each.
+    pub linearized: Vec<Result<Linearized, LinearizeError>>,
+}
+
+/// What does not change along a sweep.
+struct Prepared {
+    rest: RestEquations,
+    model: LinearModel,
+    inputs: Vec<String>,
+    bounds: Vec<(f64, f64)>,
+    values: Values,
+    known: Vec<String>,
+}
+
+impl Prepared {
+    fn at(
+        &self,
+        values: &Values,
+    ) -> Result<(EquilibriumSet, Vec<Result<Linearized, LinearizeError>>), Error> {
+        let set = find_equilibria(&self.rest, values, &self.bounds)?;
+        let linearized = set
+            .equilibria
+            .iter()
+            .map(|e| {
+                linearize_at(
+                    &self.model,
+                    &self.rest,
+                    &e.values,
+                    e.exact.as_deref(),
+                    values,
+                )
+            })
+            .collect();
+        Ok((set, linearized))
+    }
+}
+
+impl Analysis {
+    /// All equilibria with the model's values and their stability, with the linearized
+    /// dynamics about each; computed once.
+    ///
+    /// # Errors
+    /// As [`Analysis::equations`], or [`Error::Equilibria`] (constraints kept with
+    /// multipliers, time-dependent rest equations, a missing value).
+    pub fn equilibria(&self) -> Result<&Equilibria, Error> {
+        self.equilibria
+            .get_or_init(|| self.equilibria_with(&Search::default()))
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
+    /// [`Analysis::equilibria`] with steady motions or search ranges (not kept).
+    ///
+    /// # Errors
+    /// As [`Analysis::equilibria`], or an unknown coordinate in a range.
+    pub fn equilibria_with(&self, search: &Search) -> Result<Equilibria, Error> {
+        let prepared = self.prepare_equilibria(search)?;
+        let (set, linearized) = prepared.at(&prepared.values)?;
+        Ok(Equilibria {
+            rest: prepared.rest,
+            set,
+            linearized,
+            inputs: prepared.inputs,
+        })
+    }
+
+    /// Equilibria and their stability at `steps + 1` values of the parameter, input or
+    /// steady rate `range.name` from `range.low` to `range.high` (one derivation for all).
+    ///
+    /// # Errors
+    /// As [`Analysis::equilibria_with`], or an unknown name.
+    pub fn equilibrium_sweep(
+        &self,
+        search: &Search,
+        range: &Range,
+        steps: usize,
+    ) -> Result<(RestEquations, Vec<SweepStep>), Error> {
+        let prepared = self.prepare_equilibria(search)?;
+        if !prepared.known.contains(&range.name) {
+            return Err(unknown(&range.name, &prepared.known));
+        }
+        let steps = steps.clamp(1, 10_000);
+        let mut rows = Vec::with_capacity(steps + 1);
+        for k in 0..=steps {
+            let value = range.low + (range.high - range.low) * k as f64 / steps as f64;
+            let mut values = prepared.values.clone();
+            values.insert(range.name.clone(), value);
+            let (set, linearized) = prepared.at(&values)?;
+            rows.push(SweepStep {
+                value,
+                set,
+                linearized,
+            });
+        }
+        Ok((prepared.rest, rows))
+    }
+
+    fn prepare_equilibria(&self, search: &Search) -> Result<Prepared, Error> {
+        if let Some((name, _)) = self.timed_inputs().first() {
+            return Err(Error::NotAvailable(format!(
+                "the input `{name}` is a function of time: equilibria hold the inputs constant"
+            )));
+        }
+        let equations = self.equations()?;
+        let spinning: Vec<String> = search.steady.iter().map(|(q, _)| q.clone()).collect();
+        let rest = steady_equations(equations, &spinning)?;
+        let mut values: Values = self.values()?.into_iter().collect();
+        let mut known: Vec<String> = values.keys().cloned().collect();
+        known.extend(self.system().parameters().iter().map(|(n, _)| n.clone()));
+        for (q, rate) in &search.steady {
+            if let Some(symbol) = spin_rate(q).as_symbol() {
+                values.insert(symbol.name().to_owned(), *rate);
+                known.push(symbol.name().to_owned());
+            }
+        }
+        known.sort();
+        known.dedup();
+        let mut bounds = vec![DEFAULT_RANGE; rest.coordinates.len()];
+        for range in &search.ranges {
+            let i = rest
+                .coordinates
+                .iter()
+                .position(|q| *q == range.name)
+                .ok_or_else(|| unknown(&range.name, &rest.coordinates))?;
+            bounds[i] = (range.low, range.high);
+        }
+        let inputs: Vec<String> = self
+            .system()
+            .inputs()
+            .iter()
+            .map(|(n, _)| n.clone())
+            .collect();
+        let model = linear_model(equations, &rest, &inputs);
+        Ok(Prepared {
+            rest,
+            model,
+            inputs,
+            bounds,
+            values,
+            known,
+        })
+    }
+}
+
+fn unknown(name: &str, known: &[String]) -> Error {
+    AssignmentError::UnknownName {
+        name: name.to_owned(),
+        known: known.to_vec(),
+    }
+    .into()
+}

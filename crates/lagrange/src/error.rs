@@ -1,0 +1,143 @@
+//! The errors of the pipeline, each with its [`ErrorKind`]: whose mistake it is decides the
+//! exit code of the command line (docs/cli.md) and how a program should react.
+
+use std::path::PathBuf;
+
+/// Whose mistake an [`Error`] is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// The user's input is wrong: the model, a value, a name, a setting. Mend the input.
+    Input,
+    /// The input is well formed but the mechanics is degenerate or not supported (a singular
+    /// mass matrix, conflicting constraints, equilibria of a time-dependent system…).
+    Mechanics,
+    /// lagrange disagrees with itself (two methods give different answers): a bug.
+    Internal,
+}
+
+/// A model file or text with errors: its diagnostics and the text they point into.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelErrors {
+    /// Every mistake found, with its location and how to mend it.
+    pub diagnostics: Vec<model::Diagnostic>,
+    /// The model text.
+    pub source: String,
+}
+
+impl ModelErrors {
+    /// The diagnostics rendered with the file name, line, column and the source line.
+    #[must_use]
+    pub fn render(&self, file: &str, options: model::RenderOptions) -> String {
+        model::render(&self.diagnostics, file, &self.source, options)
+    }
+
+    /// How many of the diagnostics are errors.
+    #[must_use]
+    pub fn error_count(&self) -> usize {
+        self.diagnostics
+            .iter()
+            .filter(|d| d.severity == model::Severity::Error)
+            .count()
+    }
+}
+
+/// Everything that can stop the pipeline.
+#[derive(Debug, Clone, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The model file could not be read.
+    #[error("cannot read the model file `{}`: {reason}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// The model text has errors (rendered by [`ModelErrors::render`]).
+    #[error("the model has {} error(s)", .0.error_count())]
+    Model(ModelErrors),
+    /// A line of the model could not be turned into mechanics.
+    #[error("{message}")]
+    Located {
+        /// What is wrong.
+        message: String,
+        /// Line (1-based).
+        line: usize,
+        /// Column (1-based).
+        column: usize,
+        /// Whose mistake.
+        kind: ErrorKind,
+    },
+    /// A value given for a name (`NAME=VALUE`) is refused.
+    #[error(transparent)]
+    Assignment(#[from] crate::assign::AssignmentError),
+    /// The model could not be lowered into a system.
+    #[error(transparent)]
+    Lower(#[from] model::LowerError),
+    /// The equations of motion could not be derived.
+    #[error(transparent)]
+    Mechanics(#[from] mechanics::MechanicsError),
+    /// The reactions could not be derived.
+    #[error(transparent)]
+    Reactions(#[from] mechanics::ReactionError),
+    /// Equilibria could not be looked for.
+    #[error(transparent)]
+    Equilibria(#[from] mechanics::equilibria::EquilibriumError),
+    /// A simulation could not be prepared.
+    #[error(transparent)]
+    Simulation(#[from] simulation::SimulationError),
+    /// A simulation needs an end time.
+    #[error("no end time: give one, or write `simulate to T` in the model")]
+    NoEndTime,
+    /// An unknown integration method named in the model's `simulate` statement.
+    #[error("unknown method `{name}` (available: dopri5, gauss, sdirk)")]
+    UnknownMethod {
+        /// The name.
+        name: String,
+    },
+    /// A value the work needs is missing or not a number.
+    #[error("{what} has no numeric value; give it one")]
+    MissingValue {
+        /// What (a parameter, an initial value…).
+        what: String,
+    },
+    /// Something was asked that the model does not have.
+    #[error("{0}")]
+    NotAvailable(String),
+    /// lagrange disagrees with itself.
+    #[error("internal inconsistency (a bug of lagrange): {0}")]
+    Inconsistent(String),
+}
+
+impl Error {
+    /// Whose mistake this is.
+    #[must_use]
+    pub fn kind(&self) -> ErrorKind {
+        use simulation::SimulationError as S;
+        match self {
+            Error::Read { .. }
+            | Error::Model(_)
+            | Error::Assignment(_)
+            | Error::NoEndTime
+            | Error::UnknownMethod { .. }
+            | Error::MissingValue { .. }
+            | Error::NotAvailable(_) => ErrorKind::Input,
+            Error::Located { kind, .. } => *kind,
+            Error::Simulation(
+                S::InvalidSetting { .. }
+                | S::MissingValue(_)
+                | S::InitialState { .. }
+                | S::StopCondition { .. }
+                | S::RecordCondition { .. }
+                | S::GaussWithConstraints { .. },
+            ) => ErrorKind::Input,
+            Error::Reactions(mechanics::ReactionError::UnknownConstraint(_)) => ErrorKind::Input,
+            Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {
+                ErrorKind::Input
+            }
+            Error::Inconsistent(_) => ErrorKind::Internal,
+            _ => ErrorKind::Mechanics,
+        }
+    }
+}

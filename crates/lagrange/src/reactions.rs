@@ -1,0 +1,123 @@
+//! Constraint reactions of an [`Analysis`]: all those asked for (derived only when asked
+//! for: they cost far more than the equations of motion), and the one-sided ones alone
+//! (contacts, ropes, rolling contacts' normal forces), which decide where a simulation stops.
+
+use cas::Expr;
+use mechanics::{Agreement, Reaction, ReactionRequest};
+use report::UnilateralReport;
+
+use crate::{Analysis, Error};
+
+/// The reactions a system asks for.
+#[derive(Debug, Clone)]
+pub struct Reactions {
+    /// The independent coordinates the reactions are written in.
+    pub coordinates: Vec<String>,
+    /// The reactions, in the order asked.
+    pub reactions: Vec<Reaction>,
+    /// For each reaction, its one-sided analysis when it pushes or pulls only.
+    pub unilateral: Vec<Option<UnilateralReport>>,
+}
+
+impl Reactions {
+    /// Whether Lagrange I and Newton–Euler disagree on any reaction (a bug of lagrange).
+    #[must_use]
+    pub fn disagree(&self) -> bool {
+        self.reactions
+            .iter()
+            .any(|r| r.agreement == Agreement::Disagree)
+    }
+}
+
+/// Whether a request is for a force that can only push or pull.
+fn one_sided(request: &ReactionRequest) -> bool {
+    matches!(request, ReactionRequest::Release(r) if r.kind.is_unilateral() || r.normal.is_some())
+}
+
+impl Analysis {
+    /// Every reaction asked for, by Lagrange I and Newton–Euler; `None` when none is.
+    ///
+    /// # Errors
+    /// As [`Analysis::equations`], or [`Error::Reactions`].
+    pub fn reactions(&self) -> Result<Option<&Reactions>, Error> {
+        self.reactions
+            .get_or_init(|| self.compute_reactions())
+            .as_ref()
+            .map(Option::as_ref)
+            .map_err(Clone::clone)
+    }
+
+    fn compute_reactions(&self) -> Result<Option<Reactions>, Error> {
+        let requests = self.requests()?;
+        if requests.is_empty() {
+            return Ok(None);
+        }
+        let equations = self.equations()?;
+        let reactions = mechanics::reactions_of(self.system(), equations, &requests)?;
+        let unilateral = reactions
+            .iter()
+            .map(|r| {
+                let (value, _) = r.along?;
+                Some(UnilateralReport {
+                    along_motion: mechanics::along_motion(equations, value),
+                    scan: self.scan(value),
+                })
+            })
+            .collect();
+        Ok(Some(Reactions {
+            coordinates: equations.coordinates().to_vec(),
+            reactions,
+            unilateral,
+        }))
+    }
+
+    /// The one-sided reactions asked for, `(name, value)` with `value ≥ 0` while the
+    /// constraint holds. Only these are derived (or read from [`Analysis::reactions`] when
+    /// that was already asked for): a bilateral hinge costs nothing here.
+    ///
+    /// # Errors
+    /// As [`Analysis::reactions`].
+    pub fn one_sided_contacts(&self) -> Result<&[(String, Expr)], Error> {
+        self.contacts
+            .get_or_init(|| {
+                let along = |reactions: &[Reaction]| {
+                    reactions
+                        .iter()
+                        .filter_map(|r| r.along.map(|(value, _)| (r.name.clone(), value)))
+                        .collect()
+                };
+                if let Some(Ok(computed)) = self.reactions.get() {
+                    return Ok(computed
+                        .as_ref()
+                        .map_or_else(Vec::new, |c| along(&c.reactions)));
+                }
+                let requests: Vec<ReactionRequest> =
+                    self.requests()?.into_iter().filter(one_sided).collect();
+                if requests.is_empty() {
+                    return Ok(Vec::new());
+                }
+                let equations = self.equations()?;
+                Ok(along(&mechanics::reactions_of(
+                    self.system(),
+                    equations,
+                    &requests,
+                )?))
+            })
+            .as_ref()
+            .map(Vec::as_slice)
+            .map_err(Clone::clone)
+    }
+
+    /// Where a one-sided reaction of a one-coordinate system changes sign, from the initial
+    /// state, with the model's values.
+    fn scan(&self, value: Expr) -> Option<mechanics::Unilateral> {
+        let equations = self.equations().ok()?;
+        if equations.coordinates().len() != 1 {
+            return None;
+        }
+        let state = self.initial_state().ok()?;
+        let values = self.values().ok()?;
+        let lookup = |s: cas::Symbol| values.iter().find(|(n, _)| n == s.name()).map(|(_, v)| *v);
+        mechanics::scan_unilateral(equations, value, (state[0], state[1]), &lookup)
+    }
+}

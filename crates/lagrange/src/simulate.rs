@@ -1,0 +1,458 @@
+//! Simulations of an [`Analysis`]: the settings resolved against the model's `simulate`
+//! statement, the one-sided contacts as stop events, runs with their rows kept or streamed,
+//! how each run ended (typed), its summary, and sweeps over values on all cores — one
+//! derivation for all of them.
+
+use numeric::{Failure, Outcome, Stats, StopReason};
+use rayon::prelude::*;
+use serde_json::{json, Value};
+use simulation::{MethodName, Settings, Setup, Simulation, StopEvent};
+
+use crate::assign::{AssignmentError, Range};
+use crate::{Analysis, Error};
+
+/// What the user asks of a run; `None` takes the model's `simulate` statement, then the
+/// default (dopri5, rtol 1e-8, atol 1e-10, from 0, a row every step).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SimulationOptions {
+    /// The method.
+    pub method: Option<MethodName>,
+    /// Start time.
+    pub t_start: Option<f64>,
+    /// End time (required here or in the model).
+    pub t_end: Option<f64>,
+    /// Relative tolerance.
+    pub rtol: Option<f64>,
+    /// Absolute tolerance.
+    pub atol: Option<f64>,
+    /// Time between output rows.
+    pub output_step: Option<f64>,
+    /// The integration step: fixed for gauss, initial for dopri5.
+    pub step: Option<f64>,
+    /// Stop where this expression of `t`, `q`, `q_d` and the parameters crosses zero.
+    pub stop_when: Option<String>,
+    /// Record every zero crossing of these expressions without stopping.
+    pub record_when: Vec<String>,
+    /// Run on where a one-sided constraint would be lost (the equations then describe a
+    /// motion that cannot happen).
+    pub through_contact_loss: bool,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum Ending {
+    /// It reached the end time.
+    Finished,
+    /// The stop condition crossed zero.
+    Condition {
+        /// The condition as written.
+        text: String,
+    },
+    /// A one-sided constraint is lost: its reaction changes sign.
+    ContactLost {
+        /// The reaction's name.
+        constraint: String,
+    },
+    /// The integration failed; the rows before are valid.
+    Failed(Failure),
+}
+
+impl Ending {
+    /// Reads an outcome of `simulation`.
+    #[must_use]
+    pub fn of(simulation: &Simulation, outcome: &Outcome) -> Ending {
+        match outcome.stop {
+            StopReason::Event { index, .. } => match simulation.stop_event(index) {
+                Some(StopEvent::ContactLost { constraint, .. }) => Ending::ContactLost {
+                    constraint: constraint.clone(),
+                },
+                Some(StopEvent::Condition(text)) => Ending::Condition { text: text.clone() },
+                None => Ending::Condition {
+                    text: String::new(),
+                },
+            },
+            StopReason::Failed(failure) => Ending::Failed(failure),
+            _ => Ending::Finished,
+        }
+    }
+
+    /// A short word for tables: `finished`, `event`, `contact lost: NAME`, `failed …`.
+    #[must_use]
+    pub fn word(&self) -> String {
+        match self {
+            Ending::Finished => "finished".into(),
+            Ending::Condition { .. } => "event".into(),
+            Ending::ContactLost { constraint } => format!("contact lost: {constraint}"),
+            Ending::Failed(failure) => format!("failed {failure}"),
+        }
+    }
+
+    /// As JSON: `kind` is `finished`, `event` (with `event`), `contact_lost` (with
+    /// `constraint`) or `failed` (with `reason`); `t` is where it ended.
+    #[must_use]
+    pub fn to_json(&self, t: f64) -> Value {
+        match self {
+            Ending::Finished => json!({ "kind": "finished", "t": t }),
+            Ending::Condition { text } => json!({ "kind": "event", "t": t, "event": text }),
+            Ending::ContactLost { constraint } => {
+                json!({ "kind": "contact_lost", "t": t, "constraint": constraint })
+            }
+            Ending::Failed(failure) => {
+                // The failure reads "at t = …: why"; the time is a field of its own.
+                let text = failure.to_string();
+                let reason = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
+                json!({ "kind": "failed", "t": failure_time(failure).unwrap_or(t), "reason": reason })
+            }
+        }
+    }
+}
+
+/// When a failure happened.
+#[must_use]
+pub fn failure_time(failure: &Failure) -> Option<f64> {
+    match *failure {
+        Failure::Rhs { t, .. }
+        | Failure::StepUnderflow { t, .. }
+        | Failure::NotConverged { t, .. }
+        | Failure::TooManySteps { t, .. } => Some(t),
+        _ => None,
+    }
+}
+
+/// A recorded zero crossing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Crossing {
+    /// Which expression (index into [`SimulationOptions::record_when`]).
+    pub event: usize,
+    /// From negative to positive.
+    pub rising: bool,
+    /// `t`, the coordinates and their rates there.
+    pub state: Vec<f64>,
+}
+
+/// A finished run with every row kept.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// The column names: `t`, the coordinates, their rates `q_d`, `energy_error`,
+    /// `constraint_drift`.
+    pub columns: Vec<String>,
+    /// The rows.
+    pub rows: Vec<Vec<f64>>,
+    /// The recorded crossings.
+    pub crossings: Vec<Crossing>,
+    /// How it ended.
+    pub ending: Ending,
+    /// The time reached.
+    pub t: f64,
+    /// Steps, rejected steps, evaluations.
+    pub stats: Stats,
+    /// The method that ran.
+    pub method: MethodName,
+    /// The time span asked for.
+    pub span: (f64, f64),
+}
+
+/// What `--summary` writes: settings, outcome, work, errors, crossings.
+#[derive(Debug, Clone)]
+pub struct RunSummary<'a> {
+    /// The prepared simulation.
+    pub simulation: &'a Simulation,
+    /// Its outcome.
+    pub outcome: &'a Outcome,
+    /// The wall time, in seconds.
+    pub wall_time: f64,
+    /// Rows written.
+    pub rows: u64,
+    /// The last row's relative energy error.
+    pub energy_error: f64,
+    /// The largest constraint drift of any row.
+    pub max_drift: f64,
+    /// The recorded crossings.
+    pub crossings: &'a [Crossing],
+}
+
+impl RunSummary<'_> {
+    /// The summary as JSON (docs/json.md, "simulate --summary").
+    #[must_use]
+    pub fn to_json(&self, model: &str) -> Value {
+        let sim = self.simulation;
+        let integrator = sim.integrator_options();
+        let columns = sim.columns();
+        let n = (columns.len() - 3) / 2;
+        let (t_start, t_end) = sim.span();
+        let events: Vec<Value> = self
+            .crossings
+            .iter()
+            .map(|c| {
+                let state: serde_json::Map<String, Value> = columns[1..=2 * n]
+                    .iter()
+                    .zip(&c.state[1..])
+                    .map(|(name, value)| (name.clone(), json!(value)))
+                    .collect();
+                json!({
+                    "event": sim.recorded().get(c.event),
+                    "direction": direction(c.rising),
+                    "t": c.state[0],
+                    "state": state,
+                })
+            })
+            .collect();
+        json!({
+            "schema": report::SCHEMA,
+            "model": model,
+            "method": sim.method().to_string(),
+            "rtol": integrator.rtol,
+            "atol": integrator.atol,
+            "step": integrator.step,
+            "output_step": integrator.output_step,
+            "t_start": t_start,
+            "t_end": t_end,
+            "t_reached": self.outcome.t,
+            "outcome": Ending::of(sim, self.outcome).to_json(self.outcome.t),
+            "steps": self.outcome.stats.steps,
+            "rejected_steps": self.outcome.stats.rejected,
+            "rhs_evaluations": self.outcome.stats.evaluations,
+            "wall_time_s": self.wall_time,
+            "rows": self.rows,
+            "final_energy_error": self.energy_error,
+            "max_constraint_drift": self.max_drift,
+            "events": events,
+        })
+    }
+}
+
+/// `rising` or `falling`.
+#[must_use]
+pub fn direction(rising: bool) -> &'static str {
+    if rising {
+        "rising"
+    } else {
+        "falling"
+    }
+}
+
+impl Analysis {
+    /// The settings of a run: `options`, else the model's `simulate` statement, else the
+    /// defaults.
+    ///
+    /// # Errors
+    /// [`Error::NoEndTime`], [`Error::UnknownMethod`], or an invalid setting.
+    pub fn settings(&self, options: &SimulationOptions) -> Result<Settings, Error> {
+        let statement = self.source().and_then(|s| s.model.simulation());
+        let model = self.source().map(|s| &s.model);
+        let from_model = |pick: fn(&model::Simulation) -> Option<&model::Expr>| {
+            let e = pick(statement?)?;
+            model?.evaluate_constant(e)
+        };
+        let method = match options.method {
+            Some(m) => m,
+            None => match statement.and_then(|s| s.method.as_ref()) {
+                Some(name) => {
+                    MethodName::parse(&name.name).ok_or_else(|| Error::UnknownMethod {
+                        name: name.name.clone(),
+                    })?
+                }
+                None => MethodName::Dopri5,
+            },
+        };
+        let t_end = options
+            .t_end
+            .or_else(|| from_model(|s| s.to.as_ref()))
+            .ok_or(Error::NoEndTime)?;
+        let mut settings = Settings::new(t_end);
+        settings.method = method;
+        settings.t_start = options
+            .t_start
+            .or_else(|| from_model(|s| s.from.as_ref()))
+            .unwrap_or(0.0);
+        settings.rtol = options
+            .rtol
+            .or_else(|| from_model(|s| s.rtol.as_ref()))
+            .unwrap_or(settings.rtol);
+        settings.atol = options
+            .atol
+            .or_else(|| from_model(|s| s.atol.as_ref()))
+            .unwrap_or(settings.atol);
+        settings.output_step = options
+            .output_step
+            .or_else(|| from_model(|s| s.step.as_ref()));
+        settings.step = options.step;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// A prepared run: the equations (derived once) compiled with the current values, the
+    /// initial state, the stop events (the condition asked for, then the one-sided contacts
+    /// unless `through_contact_loss`).
+    ///
+    /// # Errors
+    /// As [`Analysis::settings`] and [`Analysis::equations`], or a [`Error::Simulation`].
+    pub fn simulation(&self, options: &SimulationOptions) -> Result<Simulation, Error> {
+        let settings = self.settings(options)?;
+        let equations = self.equations()?;
+        let mut stop_events: Vec<StopEvent> = options
+            .stop_when
+            .iter()
+            .map(|text| StopEvent::Condition(text.clone()))
+            .collect();
+        if !options.through_contact_loss {
+            stop_events.extend(self.one_sided_contacts()?.iter().map(|(name, value)| {
+                StopEvent::ContactLost {
+                    constraint: name.clone(),
+                    value: *value,
+                }
+            }));
+        }
+        let setup = Setup {
+            values: self.values()?,
+            timed_inputs: self.timed_inputs().to_vec(),
+            initial: self.initial_state()?,
+            stop_events,
+            record_when: options.record_when.clone(),
+        };
+        Ok(Simulation::prepare(
+            self.system(),
+            equations,
+            &settings,
+            setup,
+        )?)
+    }
+
+    /// Runs a simulation and keeps every row.
+    ///
+    /// # Errors
+    /// As [`Analysis::simulation`]. A run that fails part-way is not an error: its
+    /// [`Run::ending`] says so and the rows before are kept.
+    pub fn simulate(&self, options: &SimulationOptions) -> Result<Run, Error> {
+        let mut simulation = self.simulation(options)?;
+        Ok(run_kept(&mut simulation))
+    }
+
+    /// Many runs, the values of `names` set to each row of `values` in turn, on all cores;
+    /// the equations are derived once for all of them. `on_done` is called after each run
+    /// (for a progress bar).
+    ///
+    /// # Errors
+    /// As [`Analysis::simulation`] for the first run (a name or setting that is wrong for
+    /// every run); later runs carry their own errors.
+    pub fn sweep(
+        &self,
+        options: &SimulationOptions,
+        names: &[String],
+        values: &[Vec<f64>],
+        on_done: &(dyn Fn() + Sync),
+    ) -> Result<Vec<Result<SweepRun, Error>>, Error> {
+        // Derived (and the contacts found) once, before the runs share the analysis.
+        self.equations()?;
+        if !options.through_contact_loss {
+            self.one_sided_contacts()?;
+        }
+        let one = |row: &Vec<f64>| -> Result<SweepRun, Error> {
+            let mut analysis = self.clone();
+            for (name, value) in names.iter().zip(row) {
+                analysis.set_value(name, *value)?;
+            }
+            let mut simulation = analysis.simulation(options)?;
+            let mut last = Vec::new();
+            let outcome = simulation.run(&mut |r| {
+                last.clear();
+                last.extend_from_slice(r);
+            });
+            Ok(SweepRun {
+                last,
+                steps: outcome.stats.steps,
+                ending: Ending::of(&simulation, &outcome),
+            })
+        };
+        if let Some(first) = values.first() {
+            one(first)?;
+        }
+        Ok(values
+            .par_iter()
+            .map(|row| {
+                let result = one(row);
+                on_done();
+                result
+            })
+            .collect())
+    }
+}
+
+/// One run of a sweep: its last row and how it ended.
+#[derive(Debug, Clone)]
+pub struct SweepRun {
+    /// The last output row.
+    pub last: Vec<f64>,
+    /// Accepted steps.
+    pub steps: u64,
+    /// How it ended.
+    pub ending: Ending,
+}
+
+/// Runs a prepared simulation and keeps every row and crossing.
+pub fn run_kept(simulation: &mut Simulation) -> Run {
+    let columns = simulation.columns();
+    let n = (columns.len() - 3) / 2;
+    let mut rows = Vec::new();
+    let mut crossings = Vec::new();
+    let outcome = simulation.run_recording(&mut |row| rows.push(row.to_vec()), &mut |c| {
+        crossings.push(Crossing {
+            event: c.event,
+            rising: c.rising,
+            state: c.row[..=2 * n].to_vec(),
+        });
+    });
+    Run {
+        columns,
+        rows,
+        crossings,
+        ending: Ending::of(simulation, &outcome),
+        t: outcome.t,
+        stats: outcome.stats,
+        method: simulation.method(),
+        span: simulation.span(),
+    }
+}
+
+/// The values of a sweep: a grid of `steps + 1` values over one range.
+#[must_use]
+pub fn grid(range: &Range, steps: usize) -> Vec<Vec<f64>> {
+    let steps = steps.max(1);
+    (0..=steps)
+        .map(|k| vec![range.low + (range.high - range.low) * k as f64 / steps as f64])
+        .collect()
+}
+
+/// The values of a Monte-Carlo sweep: `count` draws, each value uniform in its range; the
+/// same seed gives the same draws everywhere.
+///
+/// # Errors
+/// [`AssignmentError::Form`] for zero samples.
+pub fn samples(ranges: &[Range], count: usize, seed: u64) -> Result<Vec<Vec<f64>>, Error> {
+    if count == 0 {
+        return Err(AssignmentError::Form {
+            text: "0".into(),
+            form: "a number of samples of at least 1",
+        }
+        .into());
+    }
+    let mut state = seed.max(1);
+    Ok((0..count)
+        .map(|_| {
+            ranges
+                .iter()
+                .map(|r| r.low + (r.high - r.low) * uniform(&mut state))
+                .collect()
+        })
+        .collect())
+}
+
+/// A small deterministic generator (xorshift64*).
+fn uniform(state: &mut u64) -> f64 {
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    let x = state.wrapping_mul(0x2545_f491_4f6c_dd1d);
+    (x >> 11) as f64 / (1u64 << 53) as f64
+}

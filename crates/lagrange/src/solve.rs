@@ -1,0 +1,216 @@
+//! The whole solution of a system, step by step as the course writes it (what `lagrange
+//! solve` prints): kinematics, the Lagrangian, Lagrange's equations, first integrals,
+//! equilibria and their stability, the linearized dynamics, the model's own simulation and
+//! the reactions asked for — each part from the [`Analysis`], computed once.
+
+use std::path::{Path, PathBuf};
+
+use report::document::{Document, Notation, Section};
+use report::solution_simulation::{simulation_section, RunEnd, RunReport};
+
+use crate::simulate::{run_kept, Ending, SimulationOptions};
+use crate::{Analysis, Error};
+
+/// Where the solution's figures go.
+#[derive(Debug, Clone)]
+pub struct Figures {
+    /// The directory (beside the report).
+    pub directory: PathBuf,
+    /// The file name's stem (`7.1-cart-pendulum` → `7.1-cart-pendulum-motion.svg`).
+    pub stem: String,
+    /// `svg`, or `png` for LaTeX (which `pdflatex` cannot include as SVG).
+    pub extension: &'static str,
+}
+
+/// A solution: the document and what it found.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// The document, to render as text, Markdown, LaTeX or JSON.
+    pub document: Document,
+    /// Whether Lagrange I and Newton–Euler disagree on a reaction (a bug of lagrange).
+    pub disagree: bool,
+}
+
+impl Analysis {
+    /// The solution; `figures` says where the plots go (none without it).
+    ///
+    /// # Errors
+    /// As [`Analysis::equations`]: without equations of motion there is no solution. The
+    /// later parts say in the document why they are missing.
+    pub fn solution(&self, figures: Option<&Figures>) -> Result<Solution, Error> {
+        let equations = self.equations()?;
+        let system = self.system();
+        let notation = Notation::of(system);
+        let mut document = report::solution::solution_document(&self.title(), system, equations);
+        if let (Some(section), Some(sentence)) =
+            (document.sections.first_mut(), self.inputs_sentence())
+        {
+            section.paragraph(sentence);
+        }
+        let initial = self.initial_state().ok();
+        match self.equilibria() {
+            Ok(e) => {
+                let state = initial
+                    .as_ref()
+                    .and_then(|s| initial_by_name(equations.coordinates(), s, &e.rest.coordinates));
+                document
+                    .sections
+                    .extend(report::solution_equilibria::equilibria_sections(
+                        &e.rest,
+                        &e.set,
+                        &e.linearized,
+                        &notation,
+                        state.as_ref(),
+                    ));
+            }
+            Err(why) => {
+                let mut section = Section::new("Equilibria and their stability", 2);
+                section.paragraph(format!("Not analysed: {why}."));
+                document.sections.push(section);
+            }
+        }
+        // Before the simulation, whose one-sided contacts then reuse them.
+        let reactions = self.reactions()?;
+        let has_statement = self
+            .source()
+            .is_some_and(|s| s.model.simulation().is_some());
+        if has_statement {
+            document.sections.push(self.simulation_part(figures));
+        }
+        let mut disagree = false;
+        if let Some(reactions) = reactions {
+            disagree = reactions.disagree();
+            document
+                .sections
+                .push(report::solution_reactions::reactions_section(
+                    &reactions.reactions,
+                    &reactions.unilateral,
+                    &notation,
+                ));
+        }
+        Ok(Solution { document, disagree })
+    }
+
+    /// The solution as JSON: the equations of motion (docs/json.md) with the document under
+    /// `report`.
+    ///
+    /// # Errors
+    /// As [`Analysis::solution`].
+    pub fn solution_json(&self, solution: &Solution) -> Result<serde_json::Value, Error> {
+        let mut value = report::eom_json(self.system(), self.equations()?);
+        if let Some(object) = value.as_object_mut() {
+            object.insert("report".into(), solution.document.to_json());
+        }
+        Ok(value)
+    }
+
+    /// The "Simulation" section: the model's own settings, run once.
+    fn simulation_part(&self, figures: Option<&Figures>) -> Section {
+        let mut simulation = match self.simulation(&SimulationOptions::default()) {
+            Ok(s) => s,
+            Err(error) => return simulation_section(Err(error.to_string())),
+        };
+        let run = run_kept(&mut simulation);
+        let end = match &run.ending {
+            Ending::Finished => RunEnd::Finished,
+            Ending::ContactLost { constraint } => RunEnd::ContactLost {
+                constraint: constraint.clone(),
+                t: run.t,
+            },
+            Ending::Condition { .. } => RunEnd::Condition { t: run.t },
+            Ending::Failed(failure) => RunEnd::Failed(failure.to_string()),
+        };
+        let figure = figures.map(|f| {
+            let file = format!("{}-motion.{}", f.stem, f.extension);
+            report::plot_run(&f.directory.join(&file), &f.stem, &run.columns, &run.rows)
+                .map(|()| file)
+                .map_err(|e| e.to_string())
+        });
+        let correction = simulation.initial_correction();
+        let report = RunReport {
+            method: run.method.to_string(),
+            span: run.span,
+            work: (run.stats.steps, run.stats.rejected, run.stats.evaluations),
+            columns: &run.columns,
+            last: run.rows.last().map(Vec::as_slice),
+            end,
+            corrected: correction.map(|c| (c.given.as_slice(), c.corrected.as_slice())),
+            figure,
+        };
+        simulation_section(Ok(&report))
+    }
+
+    /// The report's title: the first sentence of the model's opening comment, else the file
+    /// name, else "Solution".
+    #[must_use]
+    pub fn title(&self) -> String {
+        let Some(source) = self.source() else {
+            return "Solution".into();
+        };
+        let opening: Vec<&str> = source
+            .text
+            .lines()
+            .map(str::trim)
+            .skip_while(|l| l.is_empty())
+            .take_while(|l| l.starts_with('#') && l.trim_start_matches('#').trim() != "")
+            .map(|l| l.trim_start_matches('#').trim())
+            .collect();
+        let paragraph = opening.join(" ");
+        let sentence = match paragraph.find(". ") {
+            Some(end) => &paragraph[..end],
+            None => paragraph.trim_end_matches('.'),
+        };
+        if sentence.is_empty() {
+            source
+                .path
+                .as_deref()
+                .map_or_else(|| "Solution".into(), |p: &Path| p.display().to_string())
+        } else {
+            sentence.trim_end_matches(':').to_string()
+        }
+    }
+
+    /// The inputs as the user wrote them: `Inputs (…): F = 0, C = 0.`
+    fn inputs_sentence(&self) -> Option<String> {
+        let source = self.source()?;
+        let inputs = source.model.inputs();
+        if inputs.is_empty() {
+            return None;
+        }
+        let items: Vec<String> = inputs
+            .iter()
+            .map(|input| match &input.value {
+                Some(value) => {
+                    let written = source
+                        .text
+                        .get(value.span.start..value.span.end)
+                        .unwrap_or("…");
+                    format!("{} = {}", input.name.name, written.trim())
+                }
+                None => format!("{} (symbolic)", input.name.name),
+            })
+            .collect();
+        Some(format!(
+            "Inputs (given functions of time, held at these values unless set): {}.",
+            items.join(", ")
+        ))
+    }
+}
+
+/// The initial state ordered by `wanted` (the rest equations' coordinates); `None` when one
+/// of them is not among the equations' coordinates.
+fn initial_by_name(
+    coordinates: &[String],
+    state: &[f64],
+    wanted: &[String],
+) -> Option<report::solution_equilibria::InitialState> {
+    let n = coordinates.len();
+    let mut positions = Vec::with_capacity(wanted.len());
+    let mut rates = Vec::with_capacity(wanted.len());
+    for q in wanted {
+        let k = coordinates.iter().position(|c| c == q)?;
+        positions.push(*state.get(k)?);
+        rates.push(*state.get(n + k)?);
+    }
+    Some(report::solution_equilibria::InitialState { positions, rates })
+}
