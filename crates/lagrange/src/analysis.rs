@@ -38,6 +38,8 @@ pub struct Analysis {
     requests: Option<Vec<ReactionRequest>>,
     equations: OnceLock<Result<Equations, Error>>,
     derivations: AtomicUsize,
+    /// How many times reactions were derived (all of them, or the one-sided ones alone).
+    pub(crate) reaction_derivations: AtomicUsize,
     pub(crate) contacts: OnceLock<Result<Vec<(String, Expr)>, Error>>,
     pub(crate) reactions: OnceLock<Result<Option<crate::Reactions>, Error>>,
     pub(crate) equilibria: OnceLock<Result<crate::Equilibria, Error>>,
@@ -53,6 +55,10 @@ impl Clone for Analysis {
         if let Some(Ok(equations)) = self.equations.get() {
             let _ = copy.equations.set(Ok(equations.clone()));
         }
+        // Contacts depend on the equations alone, not on values.
+        if let Some(Ok(contacts)) = self.contacts.get() {
+            let _ = copy.contacts.set(Ok(contacts.clone()));
+        }
         copy
     }
 }
@@ -67,6 +73,7 @@ impl Analysis {
             requests: None,
             equations: OnceLock::new(),
             derivations: AtomicUsize::new(0),
+            reaction_derivations: AtomicUsize::new(0),
             contacts: OnceLock::new(),
             reactions: OnceLock::new(),
             equilibria: OnceLock::new(),
@@ -262,6 +269,12 @@ impl Analysis {
     #[must_use]
     pub fn derivations(&self) -> usize {
         self.derivations.load(Ordering::Relaxed)
+    }
+
+    /// How many times reactions were derived (each costs far more than the equations).
+    #[must_use]
+    pub fn reaction_derivations(&self) -> usize {
+        self.reaction_derivations.load(Ordering::Relaxed)
     }
 
     /// Inputs given as functions of time.

@@ -2,6 +2,8 @@
 //! for: they cost far more than the equations of motion), and the one-sided ones alone
 //! (contacts, ropes, rolling contacts' normal forces), which decide where a simulation stops.
 
+use std::sync::atomic::Ordering;
+
 use cas::Expr;
 use mechanics::{Agreement, Reaction, ReactionRequest};
 use report::UnilateralReport;
@@ -53,6 +55,7 @@ impl Analysis {
             return Ok(None);
         }
         let equations = self.equations()?;
+        self.reaction_derivations.fetch_add(1, Ordering::Relaxed);
         let reactions = mechanics::reactions_of(self.system(), equations, &requests)?;
         let unilateral = reactions
             .iter()
@@ -97,6 +100,7 @@ impl Analysis {
                     return Ok(Vec::new());
                 }
                 let equations = self.equations()?;
+                self.reaction_derivations.fetch_add(1, Ordering::Relaxed);
                 Ok(along(&mechanics::reactions_of(
                     self.system(),
                     equations,

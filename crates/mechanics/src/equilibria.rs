@@ -36,7 +36,7 @@ pub enum EquilibriumError {
         name: String,
     },
     /// A parameter or input has no numeric value.
-    #[error("`{name}` has no numeric value; give it one in the model or with --set")]
+    #[error("`{name}` has no numeric value; give it one")]
     MissingValue {
         /// Its name.
         name: String,

@@ -164,7 +164,7 @@ pub enum Failure {
         h: f64,
     },
     /// An implicit stage solve did not converge at the fixed step.
-    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:e}; use a smaller --step")]
+    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:e}; use a smaller step")]
     NotConverged {
         /// When.
         t: f64,
