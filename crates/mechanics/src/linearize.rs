@@ -110,6 +110,66 @@ fn routh(
     })
 }
 
+/// The criterion that decided (or failed to decide) an equilibrium's stability.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Criterion {
+    /// Lagrange–Dirichlet: the Hessian of the effective potential is positive definite.
+    LagrangeDirichlet,
+    /// Lyapunov's indirect method: an eigenvalue has a positive real part (unstable).
+    GrowingEigenvalue,
+    /// Lyapunov's indirect method: every eigenvalue has a negative real part.
+    DecayingEigenvalues,
+    /// Undecided: the Hessian of the effective potential is singular (a critical case).
+    SingularHessian,
+    /// Undecided: the Hessian is not positive definite and no eigenvalue grows.
+    IndefiniteHessian,
+    /// Undecided: eigenvalues on the imaginary axis of a non-conservative system.
+    ImaginaryAxis,
+    /// Routh: the reduced potential's Hessian at fixed momenta is positive definite.
+    Routh,
+    /// An eigenvalue of the linearization about the steady motion grows (unstable).
+    GrowingEigenvalueOfSteadyMotion,
+    /// Undecided: the reduced potential's Hessian is not positive definite and no eigenvalue
+    /// grows.
+    IndefiniteReducedHessian,
+    /// Decided for the `bound` coordinates after Routh reduction of the `free` ones (which
+    /// drift at constant momentum).
+    Reduced {
+        /// What decided on the reduced system.
+        criterion: Box<Criterion>,
+        /// The coordinates the decision is about.
+        bound: Vec<String>,
+        /// The reduced coordinates.
+        free: Vec<String>,
+    },
+}
+
+impl std::fmt::Display for Criterion {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let text = match self {
+            Criterion::LagrangeDirichlet => "Lagrange–Dirichlet: the Hessian of the effective potential is positive definite",
+            Criterion::GrowingEigenvalue => "Lyapunov (indirect): an eigenvalue of the linearization has a positive real part",
+            Criterion::DecayingEigenvalues => "Lyapunov (indirect): every eigenvalue has a negative real part (asymptotically stable)",
+            Criterion::SingularHessian => "undecided by linearization: the Hessian of the effective potential is singular (a critical case)",
+            Criterion::IndefiniteHessian => "undecided by linearization: the Hessian is not positive definite and no eigenvalue has a positive real part",
+            Criterion::ImaginaryAxis => "undecided by linearization: eigenvalues on the imaginary axis of a non-conservative system",
+            Criterion::Routh => "Routh: the Hessian of the reduced potential V − K₀ + ½ pᵀ M_ff⁻¹ p at fixed momenta is positive definite (stable with respect to the non-cyclic coordinates)",
+            Criterion::GrowingEigenvalueOfSteadyMotion => "Lyapunov (indirect): an eigenvalue of the linearization about the steady motion has a positive real part",
+            Criterion::IndefiniteReducedHessian => "undecided by linearization: the reduced potential's Hessian is not positive definite and no eigenvalue has a positive real part",
+            Criterion::Reduced { criterion, bound, free } => {
+                return write!(
+                    f,
+                    "{criterion}, for ({}) after Routh reduction of the free coordinate(s) ({}), which drift at constant momentum",
+                    bound.join(", "),
+                    free.join(", ")
+                );
+            }
+        };
+        f.write_str(text)
+    }
+}
+
 /// The numbers of a linearization at one equilibrium, with its stability.
 #[derive(Clone, Debug)]
 pub struct Linearized {
@@ -141,8 +201,8 @@ pub struct Linearized {
     pub controllability_rank: Option<usize>,
     /// `true` stable, `false` unstable, `None` undecided by linearization.
     pub stable: Option<bool>,
-    /// Which criterion decided.
-    pub criterion: String,
+    /// Which criterion decided (its `Display` is the sentence the reports print).
+    pub criterion: Criterion,
     /// Eigenvalues of the Hessian of the effective potential, when Lagrange–Dirichlet applied.
     pub hessian_eigenvalues: Option<Vec<f64>>,
 }
@@ -465,7 +525,7 @@ impl Linearized {
     }
 }
 
-type Decision = (Option<bool>, String, Option<Vec<f64>>);
+type Decision = (Option<bool>, Criterion, Option<Vec<f64>>);
 
 /// Stability of `M q̈ + C q̇ + K q = 0` with `hessian` the Hessian of the effective potential
 /// and `eigenvalues` those of the state matrix (see the module doc).
@@ -499,13 +559,7 @@ fn decide(
         || numeric::eigen::symmetric_generalized(&c_sym, &identity(n))
             .map(|e| e.values.iter().all(|v| *v >= -tol))
             .unwrap_or(false);
-    let growing = || {
-        (
-            Some(false),
-            "Lyapunov (indirect): an eigenvalue of the linearization has a positive real part"
-                .to_string(),
-        )
-    };
+    let growing = || (Some(false), Criterion::GrowingEigenvalue);
     if conservative_stiffness && dissipation_ok && symmetric(k0, tol) {
         let h = numeric::eigen::symmetric_generalized(hessian, &identity(n))?.values;
         let h_tol = 1e-9 * h.iter().fold(scale, |s, v| s.max(v.abs()));
@@ -514,42 +568,22 @@ fn decide(
         // eigenvalues of either sign there are rounding, not instability.
         let clearly_negative = h.iter().any(|v| *v < -h_tol);
         let (stable, criterion) = if positive {
-            (
-                Some(true),
-                "Lagrange–Dirichlet: the Hessian of the effective potential is positive definite"
-                    .to_string(),
-            )
+            (Some(true), Criterion::LagrangeDirichlet)
         } else if !clearly_negative {
-            (
-                None,
-                "undecided by linearization: the Hessian of the effective potential is singular (a critical case)"
-                    .to_string(),
-            )
+            (None, Criterion::SingularHessian)
         } else if any_growing {
             growing()
         } else {
-            (
-                None,
-                "undecided by linearization: the Hessian is not positive definite and no eigenvalue has a positive real part"
-                    .to_string(),
-            )
+            (None, Criterion::IndefiniteHessian)
         };
         return Ok((stable, criterion, Some(h)));
     }
     let (stable, criterion) = if any_growing {
         growing()
     } else if all_decaying {
-        (
-            Some(true),
-            "Lyapunov (indirect): every eigenvalue has a negative real part (asymptotically stable)"
-                .to_string(),
-        )
+        (Some(true), Criterion::DecayingEigenvalues)
     } else {
-        (
-            None,
-            "undecided by linearization: eigenvalues on the imaginary axis of a non-conservative system"
-                .to_string(),
-        )
+        (None, Criterion::ImaginaryAxis)
     };
     Ok((stable, criterion, None))
 }
@@ -607,19 +641,16 @@ fn decide_reduced(
     let a = numeric::eigen::state_matrix(&m_red, &c_bb, &k_bb)?;
     let eig = numeric::eigen::eigenvalues(&a)?;
     let (stable, criterion, h) = decide(&m_red, &c_bb, &k_bb, &h_bb, &eig)?;
-    let names = |idx: &[usize]| {
-        idx.iter()
-            .map(|i| rest.coordinates[*i].as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
+    let names = |idx: &[usize]| -> Vec<String> {
+        idx.iter().map(|i| rest.coordinates[*i].clone()).collect()
     };
     Ok(Some((
         stable,
-        format!(
-            "{criterion}, for ({}) after Routh reduction of the free coordinate(s) ({}), which drift at constant momentum",
-            names(&bound),
-            names(&free)
-        ),
+        Criterion::Reduced {
+            criterion: Box::new(criterion),
+            bound: names(&bound),
+            free: names(&free),
+        },
         h,
     )))
 }
@@ -664,22 +695,14 @@ fn decide_steady(
     };
     let h_tol = 1e-9 * hv.iter().fold(1e-300_f64, |s, v| s.max(v.abs()));
     if !hv.is_empty() && hv.iter().all(|v| *v > h_tol) {
-        return Ok((
-            Some(true),
-            "Routh: the Hessian of the reduced potential V − K₀ + ½ pᵀ M_ff⁻¹ p at fixed momenta is positive definite (stable with respect to the non-cyclic coordinates)".to_string(),
-            Some(hv),
-        ));
+        return Ok((Some(true), Criterion::Routh, Some(hv)));
     }
     if any_growing {
         return Ok((
             Some(false),
-            "Lyapunov (indirect): an eigenvalue of the linearization about the steady motion has a positive real part".to_string(),
+            Criterion::GrowingEigenvalueOfSteadyMotion,
             Some(hv),
         ));
     }
-    Ok((
-        None,
-        "undecided by linearization: the reduced potential's Hessian is not positive definite and no eigenvalue has a positive real part".to_string(),
-        Some(hv),
-    ))
+    Ok((None, Criterion::IndefiniteReducedHessian, Some(hv)))
 }

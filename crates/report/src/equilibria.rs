@@ -62,7 +62,7 @@ pub fn equilibria_array(
                 by_coordinate(&rest.coordinates, &s)
             });
             let (stable, criterion, eigenvalues) = match l {
-                Ok(l) => (json!(l.stable), json!(l.criterion), eigen_pairs(&l.eigenvalues)),
+                Ok(l) => (json!(l.stable), json!(l.criterion.to_string()), eigen_pairs(&l.eigenvalues)),
                 Err(err) => (Value::Null, json!(format!("not decided: {err}")), json!([])),
             };
             json!({
@@ -129,7 +129,7 @@ pub fn linearized_entry(
         "controllability_rank": l.controllability_rank,
         "state_dimension": l.a.len(),
         "stable": l.stable,
-        "criterion": l.criterion,
+        "criterion": l.criterion.to_string(),
     })
 }
 
