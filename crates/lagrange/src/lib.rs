@@ -74,8 +74,8 @@ pub use equilibria::{Equilibria, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors};
 pub use reactions::Reactions;
 pub use simulate::{
-    direction, failure_time, grid, run_kept, samples, Crossing, Ending, Run, RunSummary,
-    SimulationOptions, SweepRun,
+    direction, failure_time, grid, run_kept, samples, Crossing, Ending, Run, SimulationOptions,
+    SweepRun, Tally,
 };
 pub use solve::{Figures, Solution};
 

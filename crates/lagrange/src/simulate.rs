@@ -153,34 +153,63 @@ pub struct Run {
     pub span: (f64, f64),
 }
 
-/// What `--summary` writes: settings, outcome, work, errors, crossings.
-#[derive(Debug, Clone)]
-pub struct RunSummary<'a> {
-    /// The prepared simulation.
-    pub simulation: &'a Simulation,
-    /// Its outcome.
-    pub outcome: &'a Outcome,
-    /// The wall time, in seconds.
-    pub wall_time: f64,
-    /// Rows written.
+/// What a run produced, counted as its rows and crossings arrive (for a summary).
+#[derive(Debug, Clone, Default)]
+pub struct Tally {
+    /// Rows seen.
     pub rows: u64,
-    /// The last row's relative energy error.
-    pub energy_error: f64,
-    /// The largest constraint drift of any row.
+    /// The largest constraint drift of any row (NaN once one was unknown).
     pub max_drift: f64,
+    /// The last row.
+    pub last: Vec<f64>,
     /// The recorded crossings.
-    pub crossings: &'a [Crossing],
+    pub crossings: Vec<Crossing>,
 }
 
-impl RunSummary<'_> {
-    /// The summary as JSON (docs/json.md, "simulate --summary").
+impl Tally {
+    /// Counts an output row.
+    pub fn row(&mut self, row: &[f64]) {
+        self.rows += 1;
+        // NaN (drift unknown) stays NaN: `max` would drop it.
+        let drift = row.last().copied().unwrap_or(f64::NAN);
+        self.max_drift = if drift.is_nan() || self.max_drift.is_nan() {
+            f64::NAN
+        } else {
+            self.max_drift.max(drift)
+        };
+        self.last.clear();
+        self.last.extend_from_slice(row);
+    }
+
+    /// Keeps a recorded crossing (its `t`, coordinates and rates).
+    pub fn crossing(&mut self, crossing: &simulation::RecordedCrossing<'_>) {
+        let n = crossing.row.len().saturating_sub(3) / 2;
+        self.crossings.push(Crossing {
+            event: crossing.event,
+            rising: crossing.rising,
+            state: crossing.row[..=2 * n].to_vec(),
+        });
+    }
+
+    /// The last row's relative energy error.
     #[must_use]
-    pub fn to_json(&self, model: &str) -> Value {
-        let sim = self.simulation;
-        let integrator = sim.integrator_options();
-        let columns = sim.columns();
+    pub fn energy_error(&self) -> f64 {
+        self.last.iter().rev().nth(1).copied().unwrap_or(f64::NAN)
+    }
+
+    /// The summary of the run that produced these (docs/json.md, "simulate --summary").
+    #[must_use]
+    pub fn summary(
+        &self,
+        model: &str,
+        simulation: &Simulation,
+        outcome: &Outcome,
+        wall_time: f64,
+    ) -> Value {
+        let integrator = simulation.integrator_options();
+        let columns = simulation.columns();
         let n = (columns.len() - 3) / 2;
-        let (t_start, t_end) = sim.span();
+        let (t_start, t_end) = simulation.span();
         let events: Vec<Value> = self
             .crossings
             .iter()
@@ -191,7 +220,7 @@ impl RunSummary<'_> {
                     .map(|(name, value)| (name.clone(), json!(value)))
                     .collect();
                 json!({
-                    "event": sim.recorded().get(c.event),
+                    "event": simulation.recorded().get(c.event),
                     "direction": direction(c.rising),
                     "t": c.state[0],
                     "state": state,
@@ -201,21 +230,21 @@ impl RunSummary<'_> {
         json!({
             "schema": report::SCHEMA,
             "model": model,
-            "method": sim.method().to_string(),
+            "method": simulation.method().to_string(),
             "rtol": integrator.rtol,
             "atol": integrator.atol,
             "step": integrator.step,
             "output_step": integrator.output_step,
             "t_start": t_start,
             "t_end": t_end,
-            "t_reached": self.outcome.t,
-            "outcome": Ending::of(sim, self.outcome).to_json(self.outcome.t),
-            "steps": self.outcome.stats.steps,
-            "rejected_steps": self.outcome.stats.rejected,
-            "rhs_evaluations": self.outcome.stats.evaluations,
-            "wall_time_s": self.wall_time,
+            "t_reached": outcome.t,
+            "outcome": Ending::of(simulation, outcome).to_json(outcome.t),
+            "steps": outcome.stats.steps,
+            "rejected_steps": outcome.stats.rejected,
+            "rhs_evaluations": outcome.stats.evaluations,
+            "wall_time_s": wall_time,
             "rows": self.rows,
-            "final_energy_error": self.energy_error,
+            "final_energy_error": self.energy_error(),
             "max_constraint_drift": self.max_drift,
             "events": events,
         })

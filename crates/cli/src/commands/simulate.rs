@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use clap::{Args, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use lagrange::{Analysis, Crossing, Ending, MethodName, RunSummary, SimulationOptions};
+use lagrange::{Analysis, Crossing, Ending, MethodName, SimulationOptions};
 
 use crate::exit::{check_output, output_error, Exit, Failure};
 
@@ -143,115 +143,49 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
     let mut simulation = analysis
         .simulation(&options)
         .map_err(|e| failure(e, args))?;
-    if let Some(c) = simulation.initial_correction() {
-        let columns = simulation.columns();
-        let moved: Vec<String> = columns[1..]
-            .iter()
-            .zip(c.given.iter().zip(&c.corrected))
-            .filter(|(_, (a, b))| a != b)
-            .map(|(name, (a, b))| format!("{name} = {a} → {b}"))
-            .collect();
-        eprintln!(
-            "warning: the initial state does not satisfy the constraints; the run starts from the nearest state that does: {}",
-            moved.join(", ")
-        );
-    }
+    warn_if_corrected(&simulation);
     // Every output file is created before the run, so a bad path fails before a long run.
-    let mut writer: Box<dyn Write> = match &args.out {
+    let writer: Box<dyn Write> = match &args.out {
         Some(path) => Box::new(create(path)?),
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
-    let mut events_writer = args.events.as_deref().map(create).transpose()?;
+    let events_writer = args.events.as_deref().map(create).transpose()?;
     let summary_writer = args.summary.as_deref().map(create).transpose()?;
-    let columns = simulation.columns();
-    let n = (columns.len() - 3) / 2;
-    let csv = |e: std::io::Error| output_error("the CSV", &e);
-    writeln!(writer, "{}", columns.join(",")).map_err(csv)?;
-    let mut write_error = None;
-    let mut last_row: Vec<f64> = Vec::new();
-    let mut kept: Vec<Vec<f64>> = Vec::new();
-    let mut crossings: Vec<Crossing> = Vec::new();
-    let mut row_count = 0u64;
-    let mut max_drift = 0.0f64;
-    let (t_start, t_end) = simulation.span();
-    let mut progress: Option<ProgressBar> = None;
-    let started = Instant::now();
-    let outcome = simulation.run_recording(
-        &mut |row| {
-            if write_error.is_none() {
-                write_error = write_row(&mut writer, row).err();
-            }
-            if args.plot.is_some() {
-                kept.push(row.to_vec());
-            }
-            row_count += 1;
-            // NaN (drift unknown) stays NaN: `max` would drop it.
-            let drift = row[row.len() - 1];
-            max_drift = if drift.is_nan() || max_drift.is_nan() {
-                f64::NAN
-            } else {
-                max_drift.max(drift)
-            };
-            last_row.clear();
-            last_row.extend_from_slice(row);
-            // A progress bar only for runs long enough to need one; indicatif hides it when
-            // stderr is not a terminal.
-            if progress.is_none() && started.elapsed().as_secs_f64() > 0.5 {
-                progress = Some(bar(
-                    "simulating {bar:40} {percent:>3}% ({elapsed}, eta {eta})",
-                ));
-            }
-            if let Some(bar) = &progress {
-                let fraction = ((row[0] - t_start) / (t_end - t_start)).clamp(0.0, 1.0);
-                bar.set_position((fraction * 1000.0) as u64);
-            }
-        },
-        &mut |c| {
-            crossings.push(Crossing {
-                event: c.event,
-                rising: c.rising,
-                state: c.row[..=2 * n].to_vec(),
-            });
-        },
-    );
-    let elapsed = started.elapsed();
-    if let Some(bar) = progress {
-        bar.finish_and_clear();
-    }
-    if let Some(error) = write_error {
-        return Err(csv(error));
-    }
-    writer.flush().map_err(csv)?;
-    drop(writer);
-    if let Some(w) = events_writer.as_mut() {
-        write_events(w, &columns[..=2 * n], &args.record_when, &crossings)
-            .map_err(|e| output_error("the events", &e))?;
-    }
-    let energy_error = last_row.iter().rev().nth(1).copied().unwrap_or(f64::NAN);
-    let stats = outcome.stats;
+    let mut output = Output::new(writer, &simulation, args.plot.is_some())?;
+    // The crossings apart: the integrator hands rows and crossings to two callbacks.
+    let mut recorded = lagrange::Tally::default();
+    let outcome = simulation.run_recording(&mut |row| output.row(row), &mut |c| {
+        recorded.crossing(&c);
+    });
+    let (mut tally, kept, elapsed) = output.finish()?;
+    tally.crossings = recorded.crossings;
     eprintln!(
-        "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {energy_error:.3e}",
+        "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {error:.3e}",
         method = simulation.method(),
         t = outcome.t,
-        steps = stats.steps,
-        rejected = stats.rejected,
-        evals = stats.evaluations,
-        wall = format_duration(elapsed.as_secs_f64()),
+        t_end = simulation.span().1,
+        steps = outcome.stats.steps,
+        rejected = outcome.stats.rejected,
+        evals = outcome.stats.evaluations,
+        wall = format_duration(elapsed),
+        error = tally.energy_error(),
     );
     if !args.record_when.is_empty() {
-        eprintln!("{}", crossings_line(&args.record_when, &crossings));
+        eprintln!("{}", crossings_line(&args.record_when, &tally.crossings));
+    }
+    if let Some(mut w) = events_writer {
+        let columns = simulation.columns();
+        write_events(
+            &mut w,
+            &columns[..columns.len() - 2],
+            &args.record_when,
+            &tally.crossings,
+        )
+        .map_err(|e| output_error("the events", &e))?;
     }
     if let Some(mut w) = summary_writer {
-        let summary = RunSummary {
-            simulation: &simulation,
-            outcome: &outcome,
-            wall_time: elapsed.as_secs_f64(),
-            rows: row_count,
-            energy_error,
-            max_drift,
-            crossings: &crossings,
-        };
-        let text = super::eom::json(&summary.to_json(&args.model.display().to_string()));
+        let model = args.model.display().to_string();
+        let text = super::eom::json(&tally.summary(&model, &simulation, &outcome, elapsed));
         writeln!(w, "{text}")
             .and_then(|()| w.flush())
             .map_err(|e| output_error("the summary", &e))?;
@@ -264,24 +198,109 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
     }
     if let Some(path) = &args.plot {
         let title = format!("{} — {}", stem(&args.model), simulation.method());
-        report::plot_run(path, &title, &columns, &kept)
+        report::plot_run(path, &title, &simulation.columns(), &kept)
             .map_err(|e| Failure::new(Exit::Output, e))?;
         eprintln!("wrote {}", path.display());
     }
-    Ok(match Ending::of(&simulation, &outcome) {
+    Ok(exit_of(&Ending::of(&simulation, &outcome), outcome.t))
+}
+
+/// Says on stderr how the initial state was moved onto the constraints, when it was.
+fn warn_if_corrected(simulation: &lagrange::simulation::Simulation) {
+    let Some(c) = simulation.initial_correction() else {
+        return;
+    };
+    let moved: Vec<String> = simulation.columns()[1..]
+        .iter()
+        .zip(c.given.iter().zip(&c.corrected))
+        .filter(|(_, (a, b))| a != b)
+        .map(|(name, (a, b))| format!("{name} = {a} → {b}"))
+        .collect();
+    eprintln!(
+        "warning: the initial state does not satisfy the constraints; the run starts from the nearest state that does: {}",
+        moved.join(", ")
+    );
+}
+
+/// Where the rows of a single run go: the CSV, the plot's copy, the tally, the progress bar.
+struct Output<'w> {
+    writer: Box<dyn Write + 'w>,
+    write_error: Option<std::io::Error>,
+    kept: Option<Vec<Vec<f64>>>,
+    tally: lagrange::Tally,
+    progress: Option<ProgressBar>,
+    span: (f64, f64),
+    started: Instant,
+}
+
+impl<'w> Output<'w> {
+    fn new(
+        mut writer: Box<dyn Write + 'w>,
+        simulation: &lagrange::simulation::Simulation,
+        keep: bool,
+    ) -> Result<Output<'w>, Failure> {
+        writeln!(writer, "{}", simulation.columns().join(","))
+            .map_err(|e| output_error("the CSV", &e))?;
+        Ok(Output {
+            writer,
+            write_error: None,
+            kept: keep.then(Vec::new),
+            tally: lagrange::Tally::default(),
+            progress: None,
+            span: simulation.span(),
+            started: Instant::now(),
+        })
+    }
+
+    fn row(&mut self, row: &[f64]) {
+        if self.write_error.is_none() {
+            self.write_error = write_row(&mut self.writer, row).err();
+        }
+        if let Some(kept) = &mut self.kept {
+            kept.push(row.to_vec());
+        }
+        self.tally.row(row);
+        // A progress bar only for runs long enough to need one; indicatif hides it when
+        // stderr is not a terminal.
+        if self.progress.is_none() && self.started.elapsed().as_secs_f64() > 0.5 {
+            self.progress = Some(bar(
+                "simulating {bar:40} {percent:>3}% ({elapsed}, eta {eta})",
+            ));
+        }
+        if let Some(bar) = &self.progress {
+            let (t0, t1) = self.span;
+            let fraction = ((row[0] - t0) / (t1 - t0)).clamp(0.0, 1.0);
+            bar.set_position((fraction * 1000.0) as u64);
+        }
+    }
+
+    /// Flushes the CSV; the tally, the kept rows and the wall time in seconds.
+    fn finish(mut self) -> Result<(lagrange::Tally, Vec<Vec<f64>>, f64), Failure> {
+        let elapsed = self.started.elapsed().as_secs_f64();
+        if let Some(bar) = self.progress.take() {
+            bar.finish_and_clear();
+        }
+        let csv = |e: std::io::Error| output_error("the CSV", &e);
+        if let Some(error) = self.write_error.take() {
+            return Err(csv(error));
+        }
+        self.writer.flush().map_err(csv)?;
+        Ok((self.tally, self.kept.unwrap_or_default(), elapsed))
+    }
+}
+
+/// The exit code of a run's ending, said on stderr when it stopped early.
+fn exit_of(ending: &Ending, t: f64) -> Exit {
+    match ending {
         Ending::Finished => Exit::Success,
         Ending::ContactLost { constraint } => {
             eprintln!(
-                "stopped at t = {}: the one-sided constraint `{constraint}` is lost there (its reaction changes sign); run with --through-contact-loss to go on regardless",
-                outcome.t
+                "stopped at t = {t}: the one-sided constraint `{constraint}` is lost there (its reaction changes sign); run with --through-contact-loss to go on regardless"
             );
             Exit::Success
         }
         Ending::Condition { .. } => {
-            eprintln!(
-                "stopped at t = {}: --stop-when expression crossed zero",
-                outcome.t
-            );
+            eprintln!("stopped at t = {t}: --stop-when expression crossed zero");
             Exit::Success
         }
         Ending::Failed(failure) => {
@@ -289,7 +308,7 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
             Exit::RunFailed
         }
         _ => Exit::RunFailed,
-    })
+    }
 }
 
 /// A library error, with the flag named where it comes from one.
