@@ -177,6 +177,40 @@ pub fn number(
     }
 }
 
+/// Initial deviations `NAME=VALUE` (a rate as `NAME'` or `NAME_d`) → `(δq₀, δq̇₀)` in the
+/// order of `coordinates`, the others 0.
+///
+/// # Errors
+/// A malformed item, a value that is not a number, or a name that is not a coordinate.
+pub fn deviations(
+    items: &[String],
+    coordinates: &[String],
+    values: &dyn Fn(cas::Symbol) -> Option<f64>,
+) -> Result<(Vec<f64>, Vec<f64>), AssignmentError> {
+    let n = coordinates.len();
+    let (mut dq, mut dv) = (vec![0.0; n], vec![0.0; n]);
+    for item in items {
+        let a = parse_assignment(item)?;
+        let value = number(item, a.value, values)?;
+        let (base, rate) = match a.name.strip_suffix('\'').or(a.name.strip_suffix("_d")) {
+            Some(base) => (base, true),
+            None => (a.name.as_str(), false),
+        };
+        let i = coordinates.iter().position(|q| q == base).ok_or_else(|| {
+            AssignmentError::UnknownName {
+                name: base.to_owned(),
+                known: coordinates.to_vec(),
+            }
+        })?;
+        if rate {
+            dv[i] = value;
+        } else {
+            dq[i] = value;
+        }
+    }
+    Ok((dq, dv))
+}
+
 /// Whether a value is a function of time.
 #[must_use]
 pub fn depends_on_time(value: Expr) -> bool {

@@ -62,6 +62,7 @@
 
 mod analysis;
 pub mod assign;
+pub mod csv;
 mod equilibria;
 mod error;
 mod reactions;
@@ -74,8 +75,8 @@ pub use equilibria::{Equilibria, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors};
 pub use reactions::Reactions;
 pub use simulate::{
-    direction, failure_time, grid, run_kept, samples, Crossing, Ending, Run, SimulationOptions,
-    SweepRun, Tally,
+    direction, failure_time, grid, plan, run_kept, run_to_csv, samples, Crossing, Ending, Run,
+    SimulationOptions, Streamed, SweepRun, Tally,
 };
 pub use solve::{Figures, Solution};
 

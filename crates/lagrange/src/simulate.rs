@@ -77,6 +77,20 @@ impl Ending {
         }
     }
 
+    /// What happened, as a sentence for people (`None` when the run finished); `t` is where
+    /// it ended.
+    #[must_use]
+    pub fn sentence(&self, t: f64) -> Option<String> {
+        match self {
+            Ending::Finished => None,
+            Ending::Condition { text } => Some(format!("stopped at t = {t}: the stop condition `{text}` crossed zero")),
+            Ending::ContactLost { constraint } => Some(format!(
+                "stopped at t = {t}: the one-sided constraint `{constraint}` is lost there (its reaction changes sign)"
+            )),
+            Ending::Failed(failure) => Some(format!("the simulation stopped {failure}")),
+        }
+    }
+
     /// A short word for tables: `finished`, `event`, `contact lost: NAME`, `failed …`.
     #[must_use]
     pub fn word(&self) -> String {
@@ -419,6 +433,63 @@ pub struct SweepRun {
     pub ending: Ending,
 }
 
+/// A run written as it goes: its outcome, tally, the rows kept (when asked) and wall time.
+#[derive(Debug, Clone)]
+pub struct Streamed {
+    /// How the integration ended, with its work.
+    pub outcome: Outcome,
+    /// Rows, drift, crossings.
+    pub tally: Tally,
+    /// Every row, when asked to keep them (for a plot).
+    pub kept: Vec<Vec<f64>>,
+    /// Wall time of the run, in seconds.
+    pub wall_time: f64,
+}
+
+/// Runs a prepared simulation and writes its rows to `out` as CSV (header first) as they
+/// come, keeping them too when `keep`; `on_time` hears the time of each row (a progress bar).
+///
+/// # Errors
+/// The first write error, after the run.
+pub fn run_to_csv(
+    simulation: &mut Simulation,
+    out: &mut dyn std::io::Write,
+    keep: bool,
+    on_time: &mut dyn FnMut(f64),
+) -> std::io::Result<Streamed> {
+    out.write_all(format!("{}\n", simulation.columns().join(",")).as_bytes())?;
+    let mut write_error = None;
+    let mut kept = Vec::new();
+    let mut tally = Tally::default();
+    let mut recorded = Tally::default();
+    let started = std::time::Instant::now();
+    let outcome = simulation.run_recording(
+        &mut |row| {
+            if write_error.is_none() {
+                write_error = out.write_all(crate::csv::row(row).as_bytes()).err();
+            }
+            if keep {
+                kept.push(row.to_vec());
+            }
+            tally.row(row);
+            on_time(row[0]);
+        },
+        &mut |c| recorded.crossing(&c),
+    );
+    let wall_time = started.elapsed().as_secs_f64();
+    if let Some(error) = write_error {
+        return Err(error);
+    }
+    out.flush()?;
+    tally.crossings = recorded.crossings;
+    Ok(Streamed {
+        outcome,
+        tally,
+        kept,
+        wall_time,
+    })
+}
+
 /// Runs a prepared simulation and keeps every row and crossing.
 pub fn run_kept(simulation: &mut Simulation) -> Run {
     let columns = simulation.columns();
@@ -475,6 +546,26 @@ pub fn samples(ranges: &[Range], count: usize, seed: u64) -> Result<Vec<Vec<f64>
                 .collect()
         })
         .collect())
+}
+
+/// The values of a sweep over `ranges`: `samples` Monte-Carlo draws, or else a grid of
+/// `steps + 1` values over one range.
+///
+/// # Errors
+/// [`Error::NotAvailable`] for several ranges without samples, or zero samples.
+pub fn plan(
+    ranges: &[Range],
+    samples: Option<usize>,
+    steps: usize,
+    seed: u64,
+) -> Result<Vec<Vec<f64>>, Error> {
+    match (samples, ranges) {
+        (Some(count), _) => self::samples(ranges, count, seed),
+        (None, [range]) => Ok(grid(range, steps)),
+        (None, _) => Err(Error::NotAvailable(
+            "several ranges need Monte-Carlo samples; a grid sweeps one name".into(),
+        )),
+    }
 }
 
 /// A small deterministic generator (xorshift64*).

@@ -126,7 +126,6 @@ impl Analysis {
                 .map(|()| file)
                 .map_err(|e| e.to_string())
         });
-        let correction = simulation.initial_correction();
         let report = RunReport {
             method: run.method.to_string(),
             span: run.span,
@@ -134,7 +133,9 @@ impl Analysis {
             columns: &run.columns,
             last: run.rows.last().map(Vec::as_slice),
             end,
-            corrected: correction.map(|c| (c.given.as_slice(), c.corrected.as_slice())),
+            corrected: simulation
+                .initial_correction()
+                .map(|c| c.describe(&run.columns)),
             figure,
         };
         simulation_section(Ok(&report))

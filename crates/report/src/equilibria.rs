@@ -521,3 +521,78 @@ pub fn free_response_text(
         None => "  (no closed form here: the linearization is damped)\n".to_string(),
     }
 }
+
+/// [`linearized_json`] with the free response from initial deviations `(δq₀, δq̇₀)` about
+/// each equilibrium shown, when given.
+#[must_use]
+pub fn linearized_json_with_response(
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+    inputs: &[String],
+    only: Option<usize>,
+    deviations: Option<(&[f64], &[f64])>,
+) -> Value {
+    let mut value = linearized_json(rest, set, lin, inputs, only);
+    if let (Some((dq, dv)), Some(list)) = (deviations, value["linearized"].as_array_mut()) {
+        for entry in list {
+            let i = entry["equilibrium"].as_u64().unwrap_or(0) as usize;
+            if let Some(Ok(l)) = lin.get(i) {
+                entry["free_response"] = free_response_json(rest, l, dq, dv);
+            }
+        }
+    }
+    value
+}
+
+/// [`linearized_text`] followed by the free response about each equilibrium shown, when
+/// initial deviations are given.
+#[must_use]
+pub fn linearized_text_with_response(
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+    inputs: &[String],
+    only: Option<usize>,
+    deviations: Option<(&[f64], &[f64])>,
+) -> String {
+    let mut text = linearized_text(rest, set, lin, inputs, only);
+    if let Some((dq, dv)) = deviations {
+        for (i, l) in lin.iter().enumerate() {
+            if only.is_some_and(|k| k != i) {
+                continue;
+            }
+            if let Ok(l) = l {
+                text.push_str(&format!("\nfree response about #{i}:\n"));
+                text.push_str(&free_response_text(rest, l, dq, dv));
+            }
+        }
+    }
+    text
+}
+
+/// The points of a bifurcation diagram: every equilibrium's coordinates at every step of a
+/// sweep, with its stability.
+#[must_use]
+pub fn bifurcation_points(rows: &[SweepRow]) -> Vec<crate::BifurcationPoint> {
+    rows.iter()
+        .flat_map(|row| {
+            row.set
+                .equilibria
+                .iter()
+                .zip(&row.lin)
+                .flat_map(move |(e, l)| {
+                    let stable = l.as_ref().ok().and_then(|l| l.stable);
+                    e.values
+                        .iter()
+                        .enumerate()
+                        .map(move |(k, v)| crate::BifurcationPoint {
+                            parameter: row.value,
+                            coordinate: k,
+                            value: *v,
+                            stable,
+                        })
+                })
+        })
+        .collect()
+}

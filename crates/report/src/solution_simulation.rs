@@ -40,8 +40,9 @@ pub struct RunReport<'a> {
     pub last: Option<&'a [f64]>,
     /// How it ended.
     pub end: RunEnd,
-    /// The initial state as given and as corrected onto the constraints, when it was moved.
-    pub corrected: Option<(&'a [f64], &'a [f64])>,
+    /// How the initial state was moved onto the constraints (`name = given → corrected`, …),
+    /// when it was.
+    pub corrected: Option<String>,
     /// The plot file (relative to the report) or why it was not written; `None` without a
     /// directory for figures.
     pub figure: Option<Result<String, String>>,
@@ -66,16 +67,10 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
          of the right-hand side.",
         run.span.0, run.span.1, run.method
     ));
-    if let Some((given, corrected)) = run.corrected {
-        let moved: Vec<String> = state_names(run.columns, n)
-            .zip(given.iter().zip(corrected))
-            .filter(|(_, (a, b))| a != b)
-            .map(|(name, (a, b))| format!("{name} = {a} → {b:.6}"))
-            .collect();
+    if let Some(moved) = &run.corrected {
         section.remark(format!(
             "The initial state given does not satisfy the constraints kept with multipliers; \
-             the run starts from the nearest state that does: {}.",
-            moved.join(", ")
+             the run starts from the nearest state that does: {moved}."
         ));
     }
     if let Some(last) = run.last {

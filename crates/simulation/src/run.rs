@@ -225,6 +225,22 @@ pub struct InitialCorrection {
     pub corrected: Vec<f64>,
 }
 
+impl InitialCorrection {
+    /// The values that moved, `name = given → corrected`, by the run's column names
+    /// ([`Simulation::columns`]).
+    #[must_use]
+    pub fn describe(&self, columns: &[String]) -> String {
+        columns
+            .iter()
+            .skip(1)
+            .zip(self.given.iter().zip(&self.corrected))
+            .filter(|(_, (a, b))| a != b)
+            .map(|(name, (a, b))| format!("{name} = {a} → {b:.6}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
 /// A prepared simulation: compiled equations, initial state, settings.
 #[derive(Debug, Clone)]
 pub struct Simulation {

@@ -4,7 +4,7 @@
 use lagrange::report;
 use std::path::Path;
 
-use lagrange::{Analysis, Equilibria, Range, Search};
+use lagrange::{Analysis, Range, Search};
 use report::equilibria as print;
 
 use crate::args::{EomFormat, EquilibriumOptions};
@@ -45,8 +45,22 @@ pub fn run(
         )),
         None => print::equilibria_text(&found.rest, &found.set, &found.linearized),
         Some(initial) => {
-            let deviations = deviations(&analysis, initial, &found.rest.coordinates)?;
-            linearized(&found, only, deviations.as_ref(), json)
+            let lookup = super::lookup(&analysis);
+            let deviations = (!initial.is_empty())
+                .then(|| lagrange::assign::deviations(initial, &found.rest.coordinates, &lookup))
+                .transpose()
+                .map_err(|e| Failure::input(format!("--initial {e}")))?;
+            let deviations = deviations
+                .as_ref()
+                .map(|(q, v)| (q.as_slice(), v.as_slice()));
+            let (r, set, lin, inputs) = (&found.rest, &found.set, &found.linearized, &found.inputs);
+            if json {
+                super::eom::json(&print::linearized_json_with_response(
+                    r, set, lin, inputs, only, deviations,
+                ))
+            } else {
+                print::linearized_text_with_response(r, set, lin, inputs, only, deviations)
+            }
         }
     };
     println(&text)?;
@@ -94,26 +108,7 @@ fn run_sweep(
         })
         .collect();
     if let Some(plot) = &options.plot {
-        let points: Vec<report::BifurcationPoint> =
-            rows.iter()
-                .flat_map(|row| {
-                    row.set
-                        .equilibria
-                        .iter()
-                        .zip(&row.lin)
-                        .flat_map(move |(e, l)| {
-                            let stable = l.as_ref().ok().and_then(|l| l.stable);
-                            e.values.iter().enumerate().map(move |(k, v)| {
-                                report::BifurcationPoint {
-                                    parameter: row.value,
-                                    coordinate: k,
-                                    value: *v,
-                                    stable,
-                                }
-                            })
-                        })
-                })
-                .collect();
+        let points = print::bifurcation_points(&rows);
         report::plot_bifurcation(plot, &range.name, &rest.coordinates, &points)
             .map_err(|e| Failure::new(Exit::Output, e))?;
         eprintln!("wrote {}", plot.display());
@@ -125,77 +120,4 @@ fn run_sweep(
     };
     println(&text)?;
     Ok(Exit::Success)
-}
-
-/// Initial deviations and their rates, by coordinate.
-type Deviations = (Vec<f64>, Vec<f64>);
-
-/// `--initial NAME=VALUE` / `NAME'=VALUE` → deviations and rates by coordinate.
-fn deviations(
-    analysis: &Analysis,
-    initial: &[String],
-    coordinates: &[String],
-) -> Result<Option<Deviations>, Failure> {
-    if initial.is_empty() {
-        return Ok(None);
-    }
-    let lookup = super::lookup(analysis);
-    let n = coordinates.len();
-    let (mut dq, mut dv) = (vec![0.0; n], vec![0.0; n]);
-    for item in initial {
-        let bad = |e: &dyn std::fmt::Display| Failure::input(format!("--initial {e}"));
-        let a = lagrange::parse_assignment(item).map_err(|e| bad(&e))?;
-        let value = lagrange::assign::number(item, a.value, &lookup).map_err(|e| bad(&e))?;
-        let (base, rate) = match a.name.strip_suffix('\'').or(a.name.strip_suffix("_d")) {
-            Some(base) => (base, true),
-            None => (a.name.as_str(), false),
-        };
-        let i = coordinates.iter().position(|q| q == base).ok_or_else(|| {
-            bad(&format!(
-                "`{item}`: `{base}` is not a coordinate (it has: {})",
-                coordinates.join(", ")
-            ))
-        })?;
-        if rate {
-            dv[i] = value;
-        } else {
-            dq[i] = value;
-        }
-    }
-    Ok(Some((dq, dv)))
-}
-
-/// The linearize output, with the free response from `deviations` when given.
-fn linearized(
-    found: &Equilibria,
-    only: Option<usize>,
-    deviations: Option<&Deviations>,
-    json: bool,
-) -> String {
-    let (r, set, lin) = (&found.rest, &found.set, &found.linearized);
-    if json {
-        let mut value = print::linearized_json(r, set, lin, &found.inputs, only);
-        if let (Some((dq, dv)), Some(list)) = (deviations, value["linearized"].as_array_mut()) {
-            for entry in list {
-                let i = entry["equilibrium"].as_u64().unwrap_or(0) as usize;
-                if let Some(Ok(l)) = lin.get(i) {
-                    entry["free_response"] = print::free_response_json(r, l, dq, dv);
-                }
-            }
-        }
-        return super::eom::json(&value);
-    }
-    let mut text = print::linearized_text(r, set, lin, &found.inputs, only);
-    if let Some((dq, dv)) = deviations {
-        for (i, l) in lin.iter().enumerate() {
-            if only.is_some_and(|k| k != i) {
-                continue;
-            }
-            if let Ok(l) = l {
-                text.push_str(&format!("\nfree response about #{i}:\n"));
-                text.push_str(&print::free_response_text(r, l, dq, dv));
-            }
-        }
-    }
-    text
 }
