@@ -292,12 +292,12 @@ pub fn derive(system: &System) -> Result<Equations, MechanicsError> {
     derive_all(system, true, true)
 }
 
-/// [`derive`] without looking for first integrals (`first_integrals()` is empty): `K`, `V`,
+/// [`derive()`] without looking for first integrals (`first_integrals()` is empty): `K`, `V`,
 /// Lagrange's equations, `M` and `f` — the work of tools that only form the equations, for
 /// comparing with them (bench/compare).
 ///
 /// # Errors
-/// As [`derive`].
+/// As [`derive()`].
 pub fn derive_without_first_integrals(system: &System) -> Result<Equations, MechanicsError> {
     derive_all(system, true, false)
 }

@@ -1,5 +1,5 @@
 //! Mechanics over `cas` expressions: the checked input [`System`], and Lagrange's equations of
-//! the second kind [`derive`] → [`Equations`].
+//! the second kind [`derive()`] → [`Equations`].
 //!
 //! | symbol | meaning | shape |
 //! |---|---|---|
@@ -29,6 +29,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod canonical;
 mod equations;
 pub mod equilibria;
 pub mod linearize;
