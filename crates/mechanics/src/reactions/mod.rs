@@ -24,6 +24,7 @@ mod newton_euler;
 mod request;
 mod result;
 
+use crate::constraint_rank::{constraint_conflict, ConstraintConflict};
 use crate::equations::{derive, Equations, MechanicsError};
 use crate::system::System;
 
@@ -59,13 +60,18 @@ pub enum ReactionError {
     /// A constraint named in a reaction is unknown.
     #[error("no constraint `{0}`")]
     UnknownConstraint(String),
+    /// Constraints kept with multipliers depend on one another: their separate reactions are
+    /// not determined, or they cannot hold at once.
+    #[error(transparent)]
+    Conflict(#[from] ConstraintConflict),
 }
 
 /// The reactions asked for, on the motion of `system`.
 ///
 /// # Errors
-/// The system has no equations of motion, they cannot be solved for the accelerations, or a
-/// released constraint is entangled with another one.
+/// The system has no equations of motion, they cannot be solved for the accelerations, a
+/// released constraint is entangled with another one, or constraints kept with multipliers
+/// are redundant or contradictory ([`ReactionError::Conflict`]).
 pub fn reactions(
     system: &System,
     requests: &[ReactionRequest],
@@ -86,6 +92,9 @@ pub fn reactions_of(
     equations: &Equations,
     requests: &[ReactionRequest],
 ) -> Result<Vec<Reaction>, ReactionError> {
+    if let Some(conflict) = constraint_conflict(system, equations) {
+        return Err(conflict.into());
+    }
     let motion = Motion::of(equations)?;
     requests
         .iter()
