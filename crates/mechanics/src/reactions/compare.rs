@@ -42,7 +42,8 @@ pub(super) fn worst(a: Agreement, b: Agreement) -> Agreement {
         Agreement::Exact => 0,
         Agreement::Numeric => 1,
         Agreement::Single => 2,
-        Agreement::Disagree => 3,
+        Agreement::Unattributed => 3,
+        Agreement::Disagree => 4,
     };
     if rank(a) >= rank(b) {
         a

@@ -6,7 +6,7 @@ use cas::{Expr, Symbol};
 
 use super::compare::{compare, worst};
 use super::motion::{at_rest, residuals, Motion};
-use super::newton_euler::{dot, moment_equation, newton_euler};
+use super::newton_euler::{dot, moment_equation, moved_by, newton_euler};
 use super::{Agreement, Method, Reaction, ReactionError, Release, ReleaseKind};
 use crate::equations::Equations;
 use crate::system::{ConstraintForm, System, Vector};
@@ -111,7 +111,12 @@ pub(super) fn release_reaction(
         let (value, _) = along?;
         Some([0, 1, 2].map(|k| (force[k] - value * n[k]).normal()))
     });
-    let methods = if agreement == Agreement::Disagree {
+    let agreement = if agreement == Agreement::Disagree && moves_others(release) {
+        Agreement::Unattributed
+    } else {
+        agreement
+    };
+    let methods = if matches!(agreement, Agreement::Disagree | Agreement::Unattributed) {
         vec![Method::LagrangeI]
     } else {
         vec![Method::LagrangeI, Method::NewtonEuler]
@@ -218,4 +223,24 @@ pub(super) fn driving_force(
         methods: vec![Method::LagrangeI],
         agreement: Agreement::Single,
     })
+}
+
+/// Whether the release displaces a particle or body that is not one of its members (one
+/// at the same point, or one hanging from a member): Lagrange I counts its inertia and
+/// weight, the members' momentum balance does not.
+fn moves_others(release: &Release) -> bool {
+    let moves = moved_by(release);
+    let particles = release
+        .system
+        .particles()
+        .iter()
+        .enumerate()
+        .any(|(i, p)| !release.particles.contains(&i) && moves(&p.position));
+    let bodies = release
+        .system
+        .bodies()
+        .iter()
+        .enumerate()
+        .any(|(i, b)| !release.bodies.contains(&i) && moves(&b.centre));
+    particles || bodies
 }

@@ -36,6 +36,11 @@ pub enum Agreement {
     Disagree,
     /// Only one method applies.
     Single,
+    /// Newton–Euler cannot attribute every load: the release moves bodies or particles that
+    /// it does not name (two particles at one point, a pendulum hanging from the released
+    /// body), whose inertia and weight the released bodies' momentum balance does not see.
+    /// Lagrange I's value stands alone.
+    Unattributed,
 }
 
 impl Agreement {
@@ -47,6 +52,7 @@ impl Agreement {
             Agreement::Numeric => "agree numerically at random states",
             Agreement::Disagree => "DISAGREE: this is a bug, please report it",
             Agreement::Single => "one method",
+            Agreement::Unattributed => "Lagrange I only: the release also moves bodies it does not name, whose loads Newton–Euler cannot attribute",
         }
     }
 
@@ -58,6 +64,7 @@ impl Agreement {
             Agreement::Numeric => "numeric",
             Agreement::Disagree => "disagree",
             Agreement::Single => "single",
+            Agreement::Unattributed => "unattributed",
         }
     }
 }
