@@ -320,18 +320,89 @@ fn derive_all(
     let mut eliminated = Vec::new();
     let kept = eliminate(&mut system, &mut eliminated)?;
     let coordinates = system.coordinates().to_vec();
-    let n = coordinates.len();
-    if n == 0 {
+    if coordinates.is_empty() {
         return Err(MechanicsError::NoCoordinates);
     }
-    let q: Vec<Expr> = coordinates.iter().map(|c| Expr::coordinate(c)).collect();
-    let qd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 1)).collect();
-    let qdd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 2)).collect();
-    let q_sym: Vec<Option<Symbol>> = q.iter().map(|e| sym(*e)).collect();
-    let qd_sym: Vec<Option<Symbol>> = qd.iter().map(|e| sym(*e)).collect();
-    let partial = |e: Expr, s: Option<Symbol>| s.map_or_else(Expr::zero, |s| e.diff(s));
+    let vars = Variables::of(&coordinates);
+    let (kinetic, omegas) = kinetic_energy(&system);
+    let (potential, forces) = potential_and_forces(&system, &omegas, &vars);
+    let lagrangian = (kinetic - potential).normal();
+    let rows = lagrange_rows(lagrangian, &forces, &vars, &coordinates)?;
+    if check_mass_matrix {
+        check_singular(&rows.mass_matrix, &coordinates)?;
+    }
+    let (constraint_matrix, constraint_rhs, constraint_names) = constraint_rows(&kept, &vars)?;
+    let accelerations = if coordinates.len() <= 2 && kept.is_empty() {
+        explicit_accelerations(&rows.mass_matrix, &rows.forcing)
+    } else {
+        None
+    };
+    let first_integrals = if first_integrals_wanted {
+        let energies = Energies {
+            kinetic,
+            potential,
+            lagrangian: &rows.lagrangian,
+            forces: &forces,
+        };
+        first_integrals(
+            &energies,
+            &rows,
+            &kept,
+            &constraint_matrix,
+            &vars,
+            &coordinates,
+        )
+    } else {
+        Vec::new()
+    };
+    Ok(Equations {
+        coordinates,
+        kinetic_energy: kinetic,
+        potential_energy: potential,
+        lagrangian,
+        generalized_forces: forces,
+        lhs: rows.lhs,
+        mass_matrix: rows.mass_matrix,
+        forcing: rows.forcing,
+        constraint_matrix,
+        constraint_rhs,
+        constraint_names,
+        eliminated,
+        accelerations,
+        first_integrals,
+    })
+}
 
-    // Kinetic energy.
+/// The coordinates, rates and accelerations of the system as expressions and symbols.
+struct Variables {
+    qd: Vec<Expr>,
+    qdd: Vec<Expr>,
+    q_sym: Vec<Option<Symbol>>,
+    qd_sym: Vec<Option<Symbol>>,
+}
+
+impl Variables {
+    fn of(coordinates: &[String]) -> Variables {
+        let q: Vec<Expr> = coordinates.iter().map(|c| Expr::coordinate(c)).collect();
+        let qd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 1)).collect();
+        let qdd: Vec<Expr> = coordinates.iter().map(|c| Expr::rate(c, 2)).collect();
+        let q_sym = q.iter().map(|e| sym(*e)).collect();
+        let qd_sym = qd.iter().map(|e| sym(*e)).collect();
+        Variables {
+            qd,
+            qdd,
+            q_sym,
+            qd_sym,
+        }
+    }
+}
+
+fn partial(e: Expr, s: Option<Symbol>) -> Expr {
+    s.map_or_else(Expr::zero, |s| e.diff(s))
+}
+
+/// `K = Σ ½ m v² + Σ (½ m v_G² + ½ ω_Bᵀ I_G ω_B)`, and each body's angular velocity.
+fn kinetic_energy(system: &System) -> (Expr, Vec<Vector>) {
     let mut kinetic = Expr::zero();
     for p in system.particles() {
         let v: Vector = p.position.map(|x| x.dt().normal());
@@ -356,9 +427,12 @@ fn derive_all(
         }
         kinetic += b.mass * dot(&v, &v) / 2 + rot / 2;
     }
-    let kinetic = kinetic.normal();
+    (kinetic.normal(), omegas)
+}
 
-    // Potential, dissipation, generalized forces.
+/// `V` (gravity, springs, potentials) and `Q_j` by virtual work, damping `−∂D/∂q̇_j` included.
+fn potential_and_forces(system: &System, omegas: &[Vector], vars: &Variables) -> (Expr, Vec<Expr>) {
+    let n = vars.qd.len();
     let mut potential = Expr::zero();
     let mut dissipation = Expr::zero();
     let mut forces = vec![Expr::zero(); n];
@@ -375,16 +449,16 @@ fn derive_all(
             Load::Potential(v) => potential += *v,
             Load::Dissipation(d) => dissipation += *d,
             Load::Force { force, point } => {
-                for j in 0..n {
-                    let dr: Vector = point.map(|x| partial(x, q_sym[j]));
-                    forces[j] += dot(force, &dr);
+                for (f, s) in forces.iter_mut().zip(&vars.q_sym) {
+                    let dr: Vector = point.map(|x| partial(x, *s));
+                    *f += dot(force, &dr);
                 }
             }
             Load::Couple { moment, body } => {
                 if let Some(w) = omegas.get(*body) {
-                    for j in 0..n {
-                        let dw: Vector = w.map(|x| partial(x, qd_sym[j]));
-                        forces[j] += dot(moment, &dw);
+                    for (f, s) in forces.iter_mut().zip(&vars.qd_sym) {
+                        let dw: Vector = w.map(|x| partial(x, *s));
+                        *f += dot(moment, &dw);
                     }
                 }
             }
@@ -395,22 +469,41 @@ fn derive_all(
             }
         }
     }
-    for j in 0..n {
-        forces[j] = (forces[j] - partial(dissipation, qd_sym[j])).normal();
+    for (f, s) in forces.iter_mut().zip(&vars.qd_sym) {
+        *f = (*f - partial(dissipation, *s)).normal();
     }
-    let potential = potential.normal();
-    let lagrangian = (kinetic - potential).normal();
+    (potential.normal(), forces)
+}
 
-    // Lagrange II, on working forms: only the results that are kept become trees (building a
-    // large tree costs more than the derivative it comes from).
+/// Lagrange's equations row by row, with the working forms the first integrals need.
+struct Rows {
+    lagrangian: NormalForm,
+    momenta: Vec<NormalForm>,
+    generalized_gradient: Vec<NormalForm>,
+    lhs_forms: Vec<NormalForm>,
+    lhs: Vec<Expr>,
+    mass_matrix: Vec<Vec<Expr>>,
+    forcing: Vec<Expr>,
+}
+
+/// `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j`, `M_jk = ∂(E_j − Q_j)/∂q̈_k`, `f = −(E − Q)|_{q̈=0}`,
+/// on working forms: only the results that are kept become trees (building a large tree
+/// costs more than the derivative it comes from).
+fn lagrange_rows(
+    lagrangian: Expr,
+    forces: &[Expr],
+    vars: &Variables,
+    coordinates: &[String],
+) -> Result<Rows, MechanicsError> {
+    let n = coordinates.len();
     let lagrangian_form = lagrangian.normal_form();
     let partial_form =
         |s: Option<Symbol>, f: &NormalForm| s.map_or_else(NormalForm::zero, |s| f.diff(s));
     let momenta: Vec<NormalForm> = (0..n)
-        .map(|j| partial_form(qd_sym[j], &lagrangian_form))
+        .map(|j| partial_form(vars.qd_sym[j], &lagrangian_form))
         .collect();
     let generalized_gradient: Vec<NormalForm> = (0..n)
-        .map(|j| partial_form(q_sym[j], &lagrangian_form))
+        .map(|j| partial_form(vars.q_sym[j], &lagrangian_form))
         .collect();
     let mut lhs_forms = Vec::with_capacity(n);
     let mut lhs = Vec::with_capacity(n);
@@ -423,7 +516,7 @@ fn derive_all(
         } else {
             e.sub(&forces[j].normal_form())
         };
-        let Some((row, rest)) = with_forces.affine_coefficients(&qdd) else {
+        let Some((row, rest)) = with_forces.affine_coefficients(&vars.qdd) else {
             return Err(MechanicsError::NotLinearInAccelerations {
                 coordinate: coordinates[j].clone(),
             });
@@ -433,16 +526,29 @@ fn derive_all(
         mass_matrix.push(row.iter().map(NormalForm::to_expr).collect());
         forcing.push(rest.neg().to_expr());
     }
-    if check_mass_matrix {
-        check_singular(&mass_matrix, &coordinates)?;
-    }
+    Ok(Rows {
+        lagrangian: lagrangian_form,
+        momenta,
+        generalized_gradient,
+        lhs_forms,
+        lhs,
+        mass_matrix,
+        forcing,
+    })
+}
 
-    // Constraints kept with multipliers: c = A q̇ + a₀ = 0 ⇒ A q̈ = −(ċ with q̈ = 0).
+/// The constraint matrix, right-hand side and names of the constraints kept with
+/// multipliers: `c = A q̇ + a₀ = 0` ⇒ `A q̈ = −(ċ with q̈ = 0)`.
+#[allow(clippy::type_complexity)]
+fn constraint_rows(
+    kept: &[(String, Expr)],
+    vars: &Variables,
+) -> Result<(Vec<Vec<Expr>>, Vec<Expr>, Vec<String>), MechanicsError> {
     let mut constraint_matrix = Vec::new();
     let mut constraint_rhs = Vec::new();
     let mut constraint_names = Vec::new();
-    for (name, c) in &kept {
-        let Some((row, rest)) = c.dt().affine_coefficients(&qdd) else {
+    for (name, c) in kept {
+        let Some((row, rest)) = c.dt().affine_coefficients(&vars.qdd) else {
             return Err(MechanicsError::NonlinearConstraint {
                 constraint: name.clone(),
             });
@@ -451,115 +557,141 @@ fn derive_all(
         constraint_rhs.push((-rest).normal());
         constraint_names.push(name.clone());
     }
+    Ok((constraint_matrix, constraint_rhs, constraint_names))
+}
 
-    let accelerations = if n <= 2 && kept.is_empty() {
-        Matrix::from_rows(mass_matrix.clone())
-            .and_then(|m| m.solve(&Matrix::column(forcing.clone())).ok())
-            .map(|x| {
-                (0..n)
-                    .filter_map(|i| x.get(i, 0).map(Expr::normal))
-                    .collect()
-            })
-    } else {
-        None
-    };
+/// `q̈ = M⁻¹ f` in closed form (small systems only: the expressions swell with n).
+fn explicit_accelerations(mass_matrix: &[Vec<Expr>], forcing: &[Expr]) -> Option<Vec<Expr>> {
+    let n = forcing.len();
+    Matrix::from_rows(mass_matrix.to_vec())
+        .and_then(|m| m.solve(&Matrix::column(forcing.to_vec())).ok())
+        .map(|x| {
+            (0..n)
+                .filter_map(|i| x.get(i, 0).map(Expr::normal))
+                .collect()
+        })
+}
 
-    // First integrals. Constraints kept with multipliers do no work when they are
-    // `A q̇ = 0` with no rate-free term (scleronomic), so energy survives them; a momentum
-    // survives when its coordinate's column of `A` is zero.
-    let mut first_integrals = Vec::new();
-    let workless = first_integrals_wanted
-        && kept.iter().all(|(_, c)| {
-            c.affine_coefficients(&qd)
-                .is_some_and(|(_, offset)| offset.is_zero())
-        });
-    let time = sym(Expr::time());
-    let explicit_time = workless && time.is_some_and(|t| !lagrangian_form.diff(t).is_zero());
-    // A generalized force that depends on inputs and parameters only does not stop a
-    // conservation law from holding while the inputs keep it at zero: report it as a
-    // condition. One that depends on the state (damping, a spring written as a force) does.
-    let mut state: Vec<Symbol> = q_sym.iter().chain(&qd_sym).flatten().copied().collect();
-    state.extend(time);
-    let condition_for = |f: Expr| -> Option<Vec<Expr>> {
-        if f.is_zero() {
-            Some(Vec::new())
-        } else if depends_on(f, &state) {
-            None
-        } else {
-            Some(vec![f])
-        }
-    };
-    let energy_conditions: Option<Vec<Expr>> = if workless {
-        forces
-            .iter()
-            .map(|f| condition_for(*f))
-            .collect::<Option<Vec<Vec<Expr>>>>()
-            .map(|c| c.into_iter().flatten().collect())
-    } else {
-        None
-    };
-    if let (false, true, Some(conditions)) = (explicit_time, workless, energy_conditions) {
-        let h = (0..n).fold(lagrangian_form.neg(), |h, j| {
-            h.add(&qd[j].normal_form().mul(&momenta[j]))
-        });
-        // dh/dt = Σ q̇_j (E_j + Q_j) − ∂L/∂t identically; with Q = 0, no explicit time and
-        // workless constraints h is conserved. The identity is checked rather than assumed
-        // up to 8 degrees of freedom; beyond, the check costs more than the derivation and
-        // the theorem (whose premises were checked exactly above) stands alone.
-        let confirmed = n > 8 || {
-            let power = (0..n).fold(NormalForm::zero(), |p, j| {
-                p.add(&qd[j].normal_form().mul(&lhs_forms[j]))
-            });
-            h.dt().sub(&power).is_zero()
-        };
-        if confirmed {
-            let energy = kinetic.normal_form().add(&potential.normal_form());
-            let kind = if energy.sub(&h).is_zero() {
-                "energy"
-            } else {
-                "jacobi"
-            };
-            first_integrals.push(FirstIntegral {
-                kind,
-                coordinate: None,
-                value: h.to_expr(),
-                conditions,
-            });
-        }
-    }
+/// The energies and forces the first integrals are built from.
+struct Energies<'a> {
+    kinetic: Expr,
+    potential: Expr,
+    lagrangian: &'a NormalForm,
+    forces: &'a [Expr],
+}
+
+/// The energy or Jacobi integral and the momenta of cyclic coordinates, each checked.
+fn first_integrals(
+    energies: &Energies<'_>,
+    rows: &Rows,
+    kept: &[(String, Expr)],
+    constraint_matrix: &[Vec<Expr>],
+    vars: &Variables,
+    coordinates: &[String],
+) -> Vec<FirstIntegral> {
+    let n = coordinates.len();
+    let mut state: Vec<Symbol> = vars
+        .q_sym
+        .iter()
+        .chain(&vars.qd_sym)
+        .flatten()
+        .copied()
+        .collect();
+    state.extend(sym(Expr::time()));
+    let mut first_integrals: Vec<FirstIntegral> =
+        energy_integral(energies, rows, kept, vars, &state)
+            .into_iter()
+            .collect();
     for j in 0..n {
-        if !first_integrals_wanted {
-            break;
-        }
         let free_of_constraints = constraint_matrix.iter().all(|row| row[j].is_zero());
-        if !free_of_constraints || !generalized_gradient[j].is_zero() {
+        if !free_of_constraints || !rows.generalized_gradient[j].is_zero() {
             continue;
         }
-        if let Some(conditions) = condition_for(forces[j]) {
+        if let Some(conditions) = condition_for(energies.forces[j], &state) {
             first_integrals.push(FirstIntegral {
                 kind: "momentum",
                 coordinate: Some(coordinates[j].clone()),
-                value: momenta[j].to_expr(),
+                value: rows.momenta[j].to_expr(),
                 conditions,
             });
         }
     }
+    first_integrals
+}
 
-    Ok(Equations {
-        coordinates,
-        kinetic_energy: kinetic,
-        potential_energy: potential,
-        lagrangian,
-        generalized_forces: forces,
-        lhs,
-        mass_matrix,
-        forcing,
-        constraint_matrix,
-        constraint_rhs,
-        constraint_names,
-        eliminated,
-        accelerations,
-        first_integrals,
+/// A generalized force that depends on inputs and parameters only does not stop a
+/// conservation law from holding while the inputs keep it at zero: it is a condition. One
+/// that depends on the state (damping, a spring written as a force) does: `None`.
+fn condition_for(f: Expr, state: &[Symbol]) -> Option<Vec<Expr>> {
+    if f.is_zero() {
+        Some(Vec::new())
+    } else if depends_on(f, state) {
+        None
+    } else {
+        Some(vec![f])
+    }
+}
+
+/// The energy (or Jacobi) integral `h = Σ q̇ ∂L/∂q̇ − L`. Constraints kept with multipliers
+/// do no work when they are `A q̇ = 0` with no rate-free term (scleronomic), so energy
+/// survives them.
+fn energy_integral(
+    energies: &Energies<'_>,
+    rows: &Rows,
+    kept: &[(String, Expr)],
+    vars: &Variables,
+    state: &[Symbol],
+) -> Option<FirstIntegral> {
+    let n = vars.qd.len();
+    let workless = kept.iter().all(|(_, c)| {
+        c.affine_coefficients(&vars.qd)
+            .is_some_and(|(_, offset)| offset.is_zero())
+    });
+    let time = sym(Expr::time());
+    let lagrangian = energies.lagrangian;
+    let explicit_time = workless && time.is_some_and(|t| !lagrangian.diff(t).is_zero());
+    if explicit_time || !workless {
+        return None;
+    }
+    let conditions: Vec<Expr> = energies
+        .forces
+        .iter()
+        .map(|f| condition_for(*f, state))
+        .collect::<Option<Vec<Vec<Expr>>>>()?
+        .into_iter()
+        .flatten()
+        .collect();
+    let qd = &vars.qd;
+    let h = (0..n).fold(lagrangian.neg(), |h, j| {
+        h.add(&qd[j].normal_form().mul(&rows.momenta[j]))
+    });
+    // dh/dt = Σ q̇_j (E_j + Q_j) − ∂L/∂t identically; with Q = 0, no explicit time and
+    // workless constraints h is conserved. The identity is checked rather than assumed
+    // up to 8 degrees of freedom; beyond, the check costs more than the derivation and
+    // the theorem (whose premises were checked exactly above) stands alone.
+    let confirmed = n > 8 || {
+        let power = (0..n).fold(NormalForm::zero(), |p, j| {
+            p.add(&qd[j].normal_form().mul(&rows.lhs_forms[j]))
+        });
+        h.dt().sub(&power).is_zero()
+    };
+    if !confirmed {
+        return None;
+    }
+    let energy = energies
+        .kinetic
+        .normal_form()
+        .add(&energies.potential.normal_form());
+    let kind = if energy.sub(&h).is_zero() {
+        "energy"
+    } else {
+        "jacobi"
+    };
+    Some(FirstIntegral {
+        kind,
+        coordinate: None,
+        value: h.to_expr(),
+        conditions,
     })
 }
 

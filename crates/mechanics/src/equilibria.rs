@@ -254,7 +254,7 @@ pub fn steady_equations(
         .filter(|(_, f)| !**f)
         .map(|(q, _)| *q)
         .collect();
-    let exact = solve_exactly(&residuals, &bound, 0).map(|branches| {
+    let exact = solve_in_blocks(&residuals, &bound).map(|branches| {
         branches
             .into_iter()
             .filter_map(|b| {
@@ -321,11 +321,91 @@ struct Partial {
     conditions: Vec<Condition>,
 }
 
-/// Solves `equations = 0` for `unknowns` exactly: all branches, or `None`.
-fn solve_exactly(equations: &[Expr], unknowns: &[Symbol], depth: usize) -> Option<Vec<Partial>> {
-    if depth > 8 {
-        return None;
+/// At most this many exact branches are listed: beyond, the equilibria are searched for
+/// numerically (a chain of n links hanging or standing has 2ⁿ; 4096 is twelve links).
+const MAX_BRANCHES: usize = 4096;
+
+/// Solves `equations = 0` for `unknowns` exactly, block by block: equations that share no
+/// unknown are solved apart and their branches combined, so that the work grows with the
+/// number of equilibria and not with its power. `None` when a block cannot be solved exactly
+/// or there are more than [`MAX_BRANCHES`] branches.
+fn solve_in_blocks(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Partial>> {
+    let mut combined = vec![Partial::default()];
+    for (block_equations, block_unknowns) in blocks(equations, unknowns) {
+        let mut budget = MAX_BRANCHES;
+        let branches = solve_exactly(&block_equations, &block_unknowns, &mut budget)?;
+        if combined.len().saturating_mul(branches.len()) > MAX_BRANCHES {
+            return None;
+        }
+        combined = combined
+            .iter()
+            .flat_map(|a| {
+                branches.iter().map(move |b| {
+                    let mut p = a.clone();
+                    p.values.extend(b.values.iter().map(|(k, v)| (*k, *v)));
+                    p.conditions.extend(b.conditions.iter().copied());
+                    p
+                })
+            })
+            .collect();
     }
+    Some(combined)
+}
+
+/// The equations grouped into blocks that share no unknown (connected components of the
+/// graph joining each unknown to the equations it occurs in), each with its unknowns.
+/// Equations free of every unknown belong to no block (the numeric check of each equilibrium
+/// decides whether they hold); unknowns in no equation form no block either.
+fn blocks(equations: &[Expr], unknowns: &[Symbol]) -> Vec<(Vec<Expr>, Vec<Symbol>)> {
+    let mut parent: Vec<usize> = (0..unknowns.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let involved: Vec<Vec<usize>> = equations
+        .iter()
+        .map(|e| {
+            (0..unknowns.len())
+                .filter(|k| !e.diff(unknowns[*k]).is_zero())
+                .collect()
+        })
+        .collect();
+    for vars in &involved {
+        for w in vars.windows(2) {
+            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
+            parent[a] = b;
+        }
+    }
+    let mut groups: Vec<(usize, Vec<Expr>, Vec<Symbol>)> = Vec::new();
+    for (e, vars) in equations.iter().zip(&involved) {
+        let Some(first) = vars.first() else {
+            continue;
+        };
+        let r = root(&mut parent, *first);
+        match groups.iter_mut().find(|g| g.0 == r) {
+            Some(g) => g.1.push(*e),
+            None => groups.push((r, vec![*e], Vec::new())),
+        }
+    }
+    for (k, u) in unknowns.iter().enumerate() {
+        let r = root(&mut parent, k);
+        if let Some(g) = groups.iter_mut().find(|g| g.0 == r) {
+            g.2.push(*u);
+        }
+    }
+    groups.into_iter().map(|(_, e, u)| (e, u)).collect()
+}
+
+/// Solves `equations = 0` for `unknowns` exactly: all branches, or `None` (also when more
+/// branches than `budget` would be listed).
+fn solve_exactly(
+    equations: &[Expr],
+    unknowns: &[Symbol],
+    budget: &mut usize,
+) -> Option<Vec<Partial>> {
     let live: Vec<Expr> = equations.iter().copied().filter(|e| !e.is_zero()).collect();
     if unknowns.is_empty() {
         // Leftover equations free of the unknowns hold or not for given numbers; the numeric
@@ -360,7 +440,8 @@ fn solve_exactly(equations: &[Expr], unknowns: &[Symbol], depth: usize) -> Optio
                 .filter(|(j, _)| *j != i)
                 .map(|(_, e)| e.subs(&pairs).normal())
                 .collect();
-            for mut b in solve_exactly(&others, &rest_unknowns, depth + 1)? {
+            for mut b in solve_exactly(&others, &rest_unknowns, budget)? {
+                *budget = budget.checked_sub(1)?;
                 let value = s.value.subs(
                     &b.values
                         .iter()

@@ -29,6 +29,8 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod canonical;
+mod constraint_rank;
 mod equations;
 pub mod equilibria;
 pub mod linearize;
@@ -37,6 +39,7 @@ mod reactions;
 mod system;
 mod unilateral;
 
+pub use constraint_rank::{constraint_conflict, ConstraintConflict};
 pub use equations::{
     angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,
     FirstIntegral, MechanicsError,

@@ -14,15 +14,61 @@ pub enum EigenError {
     /// The matrices' shapes do not agree.
     #[error("matrix shapes do not agree")]
     Shape,
+    /// An entry is infinite or not a number (the values overflow, or are undefined there).
+    #[error("a matrix entry is not finite (row {row}, column {column}): the values overflow or are undefined")]
+    NonFinite {
+        /// Its row, from 0.
+        row: usize,
+        /// Its column, from 0.
+        column: usize,
+    },
+    /// The iteration did not converge within its cap.
+    #[error("the eigenvalue iteration did not converge in {iterations} iterations")]
+    NoConvergence {
+        /// The cap.
+        iterations: usize,
+    },
 }
 
-/// A dense row-major square matrix as `Vec<Vec<f64>>` → `DMatrix`.
+/// A dense row-major square matrix as `Vec<Vec<f64>>` → `DMatrix`, every entry finite.
 fn to_matrix(rows: &[Vec<f64>]) -> Result<DMatrix<f64>, EigenError> {
     let n = rows.len();
     if rows.iter().any(|r| r.len() != n) {
         return Err(EigenError::Shape);
     }
-    Ok(DMatrix::from_fn(n, n, |i, j| rows[i][j]))
+    let m = DMatrix::from_fn(n, n, |i, j| rows[i][j]);
+    finite(&m)?;
+    Ok(m)
+}
+
+/// Every entry of `m` is finite: an iteration on an infinite or NaN entry never converges.
+fn finite(m: &DMatrix<f64>) -> Result<(), EigenError> {
+    match m.iter().position(|x| !x.is_finite()) {
+        // Column-major storage: index = column · rows + row.
+        Some(k) => Err(EigenError::NonFinite {
+            row: k % m.nrows().max(1),
+            column: k / m.nrows().max(1),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// A cap on the QR (or SVD) sweeps of an `n×n` problem: a few per eigenvalue is the rule, so
+/// this is only reached when the iteration cannot converge.
+fn iteration_cap(n: usize) -> usize {
+    200 * (n + 1)
+}
+
+/// `m` divided by its largest entry's magnitude, and that scale (1 for a zero matrix):
+/// eigenvalues scale with the matrix, and entries near the top of the floating-point range
+/// would overflow inside the iteration.
+fn scaled(m: DMatrix<f64>) -> (DMatrix<f64>, f64) {
+    let scale = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if scale > 0.0 {
+        (m / scale, scale)
+    } else {
+        (m, 1.0)
+    }
 }
 
 /// Solutions of `K x = λ M x` for symmetric `K` and symmetric positive definite `M`:
@@ -45,8 +91,9 @@ pub fn symmetric_generalized(
     if k.nrows() != m.nrows() {
         return Err(EigenError::Shape);
     }
-    let k = (&k + k.transpose()) * 0.5;
-    let m = (&m + m.transpose()) * 0.5;
+    // Halved before adding, so that entries near the top of the range do not overflow.
+    let k = &k * 0.5 + k.transpose() * 0.5;
+    let m = &m * 0.5 + m.transpose() * 0.5;
     let chol = m.cholesky().ok_or(EigenError::MassNotPositiveDefinite)?;
     let l = chol.l();
     let l_inv = l
@@ -54,8 +101,19 @@ pub fn symmetric_generalized(
         .try_inverse()
         .ok_or(EigenError::MassNotPositiveDefinite)?;
     let s = &l_inv * k * l_inv.transpose();
-    let s = (&s + s.transpose()) * 0.5;
-    let eig = s.symmetric_eigen();
+    let s = &s * 0.5 + s.transpose() * 0.5;
+    finite(&s)?;
+    let n = s.nrows();
+    let (s, scale) = scaled(s);
+    let mut eig = nalgebra::SymmetricEigen::try_new(s, f64::EPSILON, iteration_cap(n)).ok_or(
+        EigenError::NoConvergence {
+            iterations: iteration_cap(n),
+        },
+    )?;
+    eig.eigenvalues *= scale;
+    if let Some(k) = eig.eigenvalues.iter().position(|x| !x.is_finite()) {
+        return Err(EigenError::NonFinite { row: k, column: k });
+    }
     let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
     order.sort_by(|a, b| eig.eigenvalues[*a].total_cmp(&eig.eigenvalues[*b]));
     let back = l_inv.transpose();
@@ -91,6 +149,8 @@ pub fn state_matrix(
     let lu = m.lu();
     let mk = lu.solve(&k).ok_or(EigenError::MassNotPositiveDefinite)?;
     let mc = lu.solve(&c).ok_or(EigenError::MassNotPositiveDefinite)?;
+    finite(&mk)?;
+    finite(&mc)?;
     let mut a = vec![vec![0.0; 2 * n]; 2 * n];
     for i in 0..n {
         a[i][n + i] = 1.0;
@@ -118,6 +178,7 @@ pub fn state_input(mass: &[Vec<f64>], input: &[Vec<f64>]) -> Result<Vec<Vec<f64>
         .lu()
         .solve(&b0)
         .ok_or(EigenError::MassNotPositiveDefinite)?;
+    finite(&mb)?;
     let mut b = vec![vec![0.0; p]; 2 * n];
     for i in 0..n {
         for j in 0..p {
@@ -135,11 +196,16 @@ pub fn solve(m: &[Vec<f64>], rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, EigenErr
         return Err(EigenError::Shape);
     }
     let p = rhs.first().map_or(0, Vec::len);
+    if rhs.iter().any(|r| r.len() != p) {
+        return Err(EigenError::Shape);
+    }
     let r = DMatrix::from_fn(n, p, |i, j| rhs[i][j]);
+    finite(&r)?;
     let x = mm
         .lu()
         .solve(&r)
         .ok_or(EigenError::MassNotPositiveDefinite)?;
+    finite(&x)?;
     Ok((0..n)
         .map(|i| (0..p).map(|j| x[(i, j)]).collect())
         .collect())
@@ -147,12 +213,24 @@ pub fn solve(m: &[Vec<f64>], rhs: &[Vec<f64>]) -> Result<Vec<Vec<f64>>, EigenErr
 
 /// Eigenvalues `(re, im)` of a real square matrix, sorted by real part then imaginary part.
 pub fn eigenvalues(a: &[Vec<f64>]) -> Result<Vec<(f64, f64)>, EigenError> {
-    let m = to_matrix(a)?;
-    let mut out: Vec<(f64, f64)> = m
+    let (m, scale) = scaled(to_matrix(a)?);
+    let n = m.nrows();
+    let schur = nalgebra::Schur::try_new(m, f64::EPSILON, iteration_cap(n)).ok_or(
+        EigenError::NoConvergence {
+            iterations: iteration_cap(n),
+        },
+    )?;
+    let mut out: Vec<(f64, f64)> = schur
         .complex_eigenvalues()
         .iter()
-        .map(|z| (z.re, z.im))
+        .map(|z| (z.re * scale, z.im * scale))
         .collect();
+    if let Some(k) = out
+        .iter()
+        .position(|(re, im)| !re.is_finite() || !im.is_finite())
+    {
+        return Err(EigenError::NonFinite { row: k, column: k });
+    }
     out.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
     Ok(out)
 }
@@ -169,13 +247,23 @@ pub fn controllability_rank(a: &[Vec<f64>], b: &[Vec<f64>]) -> Result<usize, Eig
     if p == 0 {
         return Ok(0);
     }
+    if b.iter().any(|r| r.len() != p) {
+        return Err(EigenError::Shape);
+    }
     let mut block = DMatrix::from_fn(n, p, |i, j| b[i][j]);
+    finite(&block)?;
     let mut blocks = DMatrix::zeros(n, n * p);
     for k in 0..n {
         blocks.view_mut((0, k * p), (n, p)).copy_from(&block);
         block = &am * block;
     }
-    let sv = blocks.singular_values();
+    // Powers of A may overflow: an infinite entry would never let the SVD converge.
+    finite(&blocks)?;
+    let cap = iteration_cap(n * p);
+    let sv = blocks
+        .try_svd(false, false, f64::EPSILON, cap)
+        .ok_or(EigenError::NoConvergence { iterations: cap })?
+        .singular_values;
     let largest = sv.iter().copied().fold(0.0_f64, f64::max);
     let tol = largest * 1e-9 * n as f64;
     Ok(sv.iter().filter(|s| **s > tol).count())
@@ -184,6 +272,52 @@ pub fn controllability_rank(a: &[Vec<f64>], b: &[Vec<f64>]) -> Result<usize, Eig
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 14: the eigenvalue step never ended when matrix entries overflowed (`g = 1e308`
+    /// on an inverted pendulum). A non-finite matrix is an error; huge finite entries work.
+    #[test]
+    fn non_finite_matrices_are_errors_not_endless_iterations() {
+        let inf = vec![vec![0.0, 1.0], vec![f64::INFINITY, 0.0]];
+        assert_eq!(
+            eigenvalues(&inf),
+            Err(EigenError::NonFinite { row: 1, column: 0 })
+        );
+        let nan = vec![vec![f64::NAN, 1.0], vec![1.0, 0.0]];
+        assert!(matches!(
+            eigenvalues(&nan),
+            Err(EigenError::NonFinite { .. })
+        ));
+        let m = vec![vec![1.0, 0.0], vec![0.0, 1.0]];
+        assert!(matches!(
+            symmetric_generalized(&inf, &m),
+            Err(EigenError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            state_matrix(&m, &m, &inf),
+            Err(EigenError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            controllability_rank(&inf, &[vec![0.0], vec![1.0]]),
+            Err(EigenError::NonFinite { .. })
+        ));
+        // M⁻¹K overflows although every input is finite.
+        let tiny = vec![vec![1e-300, 0.0], vec![0.0, 1e-300]];
+        let huge = vec![vec![-1e308, 0.0], vec![0.0, 1.0]];
+        assert!(matches!(
+            state_matrix(&tiny, &m, &huge),
+            Err(EigenError::NonFinite { .. })
+        ));
+    }
+
+    #[test]
+    fn huge_finite_entries_give_their_eigenvalues() {
+        // An inverted pendulum's state matrix with g = 1e308: λ = ±√(g/l).
+        let a = vec![vec![0.0, 1.0], vec![1e308, 0.0]];
+        let e = eigenvalues(&a).unwrap();
+        assert!((e[0].0 + 1e154).abs() < 1e140 && (e[1].0 - 1e154).abs() < 1e140);
+        let e = symmetric_generalized(&[vec![1e308]], &[vec![1.0]]).unwrap();
+        assert!((e.values[0] - 1e308).abs() < 1e294);
+    }
 
     #[test]
     fn two_masses_three_springs() {

@@ -202,18 +202,7 @@ pub fn find_roots(f: &Residual<'_>, jacobian: &Residual<'_>, search: &Search) ->
             }
         }
     } else {
-        let per_axis = ((search.max_starts as f64).powf(1.0 / n as f64).floor() as usize).max(2);
-        let total = per_axis.pow(n as u32);
-        for index in 0..total {
-            let mut rest = index;
-            let start: Vec<f64> = (0..n)
-                .map(|i| {
-                    let k = rest % per_axis;
-                    rest /= per_axis;
-                    let (lo, hi) = search.bounds[i];
-                    lo + (hi - lo) * (k as f64 + 0.5) / per_axis as f64
-                })
-                .collect();
+        for start in starts(search) {
             if let Some(r) = newton(f, jacobian, &start, search.tolerance) {
                 push_root(&mut roots, r, search);
             }
@@ -227,6 +216,74 @@ pub fn find_roots(f: &Residual<'_>, jacobian: &Residual<'_>, search: &Search) ->
             .unwrap_or(std::cmp::Ordering::Equal)
     });
     roots
+}
+
+/// Newton starts in several dimensions, at most `max_starts` of them: a grid while one with
+/// at least two points per axis fits, else the first points of a Halton sequence (a grid of
+/// 2ⁿ points grows without bound). Angles are shifted by an irrational fraction of a cell, so
+/// that no start sits where symmetric models have a singular Jacobian (`cos q = 0` at ±π/2).
+fn starts(search: &Search) -> Vec<Vec<f64>> {
+    let n = search.bounds.len();
+    let budget = search.max_starts.max(1);
+    let per_axis = (budget as f64).powf(1.0 / n as f64).floor() as usize;
+    let place = |i: usize, u: f64, cell: f64| {
+        let (lo, hi) = search.bounds[i];
+        let shift = if search.periodic[i] {
+            std::f64::consts::FRAC_1_PI * cell
+        } else {
+            0.0
+        };
+        lo + (hi - lo) * (u + shift).rem_euclid(1.0)
+    };
+    if per_axis >= 2 {
+        let cell = 1.0 / per_axis as f64;
+        let total = per_axis.pow(n as u32);
+        return (0..total)
+            .map(|index| {
+                let mut rest = index;
+                (0..n)
+                    .map(|i| {
+                        let k = rest % per_axis;
+                        rest /= per_axis;
+                        place(i, (k as f64 + 0.5) * cell, cell)
+                    })
+                    .collect()
+            })
+            .collect();
+    }
+    let primes = first_primes(n);
+    (1..=budget)
+        .map(|index| {
+            (0..n)
+                .map(|i| place(i, radical_inverse(index, primes[i]), 1.0 / budget as f64))
+                .collect()
+        })
+        .collect()
+}
+
+/// The first `n` primes (the bases of a Halton sequence).
+fn first_primes(n: usize) -> Vec<usize> {
+    let mut primes: Vec<usize> = Vec::with_capacity(n);
+    let mut candidate = 2;
+    while primes.len() < n {
+        if primes.iter().all(|p| candidate % p != 0) {
+            primes.push(candidate);
+        }
+        candidate += 1;
+    }
+    primes
+}
+
+/// The van der Corput radical inverse of `index` in `base`, in `[0, 1)`.
+fn radical_inverse(mut index: usize, base: usize) -> f64 {
+    let mut result = 0.0;
+    let mut scale = 1.0 / base as f64;
+    while index > 0 {
+        result += (index % base) as f64 * scale;
+        index /= base;
+        scale /= base as f64;
+    }
+    result
 }
 
 /// Bisection of a sign change of `value` on `[a, b]` (`fa = value(a)`).
@@ -253,6 +310,25 @@ fn bisect(value: &dyn Fn(f64) -> Option<f64>, mut a: f64, mut b: f64, mut fa: f6
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn newton_starts_stay_within_budget_and_off_the_symmetric_points() {
+        let half = std::f64::consts::FRAC_PI_2;
+        for n in [2, 9, 10, 20] {
+            let search = Search::new(
+                vec![(-std::f64::consts::PI, std::f64::consts::PI); n],
+                vec![true; n],
+            );
+            let starts = starts(&search);
+            assert!(
+                !starts.is_empty() && starts.len() <= search.max_starts,
+                "n = {n}"
+            );
+            for x in starts.iter().flatten() {
+                assert!((x.abs() - half).abs() > 1e-9, "n = {n}: a start at ±π/2");
+            }
+        }
+    }
 
     #[test]
     fn finds_every_root_of_a_trigonometric_equation_in_one_angle() {

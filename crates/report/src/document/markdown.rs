@@ -1,0 +1,54 @@
+//! The MyST Markdown rendering: headings, `$$` display math, pipe tables, admonitions.
+
+use std::fmt::Write as _;
+
+use super::latex::aligned_lines;
+use super::{Block, Cell, Document};
+
+impl Document {
+    /// MyST Markdown: headings, `$$` display math with `aligned`, pipe tables, `{note}`
+    /// admonitions for remarks, figures as images beside the file.
+    #[must_use]
+    pub fn to_markdown(&self) -> String {
+        let mut out = String::new();
+        let _ = writeln!(out, "# {}\n", self.title);
+        for s in &self.sections {
+            let _ = writeln!(out, "{} {}\n", "#".repeat(usize::from(s.level)), s.title);
+            for b in &s.blocks {
+                match b {
+                    Block::Paragraph(p) => {
+                        let _ = writeln!(out, "{p}\n");
+                    }
+                    Block::Remark(p) => {
+                        let _ = writeln!(out, "```{{note}}\n{p}\n```\n");
+                    }
+                    Block::Equations(lines) => {
+                        let _ = writeln!(out, "$$\n\\begin{{aligned}}");
+                        let _ = writeln!(out, "{}", aligned_lines(lines));
+                        let _ = writeln!(out, "\\end{{aligned}}\n$$\n");
+                    }
+                    Block::Table { header, rows } => {
+                        let _ = writeln!(out, "| {} |", header.join(" | "));
+                        let _ = writeln!(out, "|{}", "---|".repeat(header.len()));
+                        for r in rows {
+                            let cells: Vec<String> = r.iter().map(markdown_cell).collect();
+                            let _ = writeln!(out, "| {} |", cells.join(" | "));
+                        }
+                        out.push('\n');
+                    }
+                    Block::Figure { path, caption } => {
+                        let _ = writeln!(out, "```{{figure}} {path}\n{caption}\n```\n");
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+fn markdown_cell(c: &Cell) -> String {
+    match c {
+        Cell::Text(t) => t.replace('|', "\\|"),
+        Cell::Math(m) => format!("${}$", m.latex.replace('|', "\\vert ")),
+    }
+}

@@ -1,0 +1,396 @@
+//! A solution as a document — sections of prose, aligned equations, tables, figures and
+//! remarks — and its renderings: the terminal (Unicode, 80 columns), MyST Markdown (math in
+//! `$$…$$`, ready for a Jupyter Book like the seed's) and a standalone LaTeX document.
+//!
+//! The mechanics fills a [`Document`]; the renderers know nothing about mechanics. Every piece
+//! of mathematics is carried in both notations ([`Math`]), printed by the symbolic core, so the
+//! three renderings say the same thing.
+
+mod json;
+mod latex;
+mod markdown;
+mod text;
+
+use cas::print::{to_latex, to_unicode};
+use cas::Expr;
+
+use text::top_level_terms;
+
+/// How a report writes the system's expressions: the model's named constants folded back in
+/// (`m g b sin θ`, not `m g d cos² α sin θ`) and a time-independent denominator spread over
+/// the terms (`(I1 + I2 r²) φ̈1`, not one fraction over `R2²`); see
+/// [`cas::print::spread_and_fold`]. The value is never changed.
+#[derive(Clone, Debug, Default)]
+pub struct Notation {
+    names: Vec<(Expr, Expr)>,
+}
+
+impl Notation {
+    /// The notation of a system: its named constants.
+    #[must_use]
+    pub fn of(system: &mechanics::System) -> Notation {
+        Notation {
+            names: system
+                .constants()
+                .iter()
+                .map(|(name, value)| (Expr::symbol(name), *value))
+                .collect(),
+        }
+    }
+
+    /// The expression as people read it in this notation.
+    #[must_use]
+    pub fn shape(&self, e: Expr) -> Expr {
+        cas::print::spread_and_fold(e, &self.names)
+    }
+
+    /// [`Math::expr`] of the shaped expression.
+    #[must_use]
+    pub fn math(&self, e: Expr) -> Math {
+        Math::expr(self.shape(e))
+    }
+
+    /// [`Math::vector`] of the shaped components.
+    #[must_use]
+    pub fn vector(&self, components: &[Expr; 3]) -> Math {
+        Math::vector(&components.map(|c| self.shape(c)))
+    }
+}
+
+/// A piece of mathematics in the two notations people read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Math {
+    /// For terminals: `θ̇`, `ℓ`, `cos(θ1 − θ2)`.
+    pub unicode: String,
+    /// For Markdown and LaTeX: `\dot{\theta}`, `\ell`.
+    pub latex: String,
+}
+
+impl Math {
+    /// An expression, in the compact form people read.
+    #[must_use]
+    pub fn expr(e: Expr) -> Math {
+        Math {
+            unicode: to_unicode(e),
+            latex: to_latex(e),
+        }
+    }
+
+    /// A symbol or label written by hand in both notations.
+    #[must_use]
+    pub fn label(unicode: impl Into<String>, latex: impl Into<String>) -> Math {
+        Math {
+            unicode: unicode.into(),
+            latex: latex.into(),
+        }
+    }
+
+    /// A vector from its inertial components, as the seed writes it: `a x̂ + b ŷ + c ẑ`.
+    #[must_use]
+    pub fn vector(components: &[Expr; 3]) -> Math {
+        const UNITS: [(&str, &str); 3] = [("x̂", r"\hat{x}"), ("ŷ", r"\hat{y}"), ("ẑ", r"\hat{z}")];
+        let mut unicode = String::new();
+        let mut latex = String::new();
+        for (c, (u, l)) in components.iter().zip(UNITS) {
+            if c.is_literal_zero() {
+                continue;
+            }
+            let negative = to_unicode(*c).starts_with('−');
+            let magnitude = if negative { -*c } else { *c };
+            let (mut cu, mut cl) = (to_unicode(magnitude), to_latex(magnitude));
+            if top_level_terms(&cu).len() > 1 {
+                cu = format!("({cu})");
+                cl = format!(r"\left({cl}\right)");
+            }
+            push_sign(&mut unicode, &mut latex, negative);
+            if cu != "1" {
+                unicode.push_str(&cu);
+                unicode.push(' ');
+                latex.push_str(&cl);
+                latex.push(' ');
+            }
+            unicode.push_str(u);
+            latex.push_str(l);
+        }
+        if unicode.is_empty() {
+            return Math::label("0", r"\vec{0}");
+        }
+        Math { unicode, latex }
+    }
+}
+
+/// Appends the sign of the next term of a sum written out by hand: a leading `−` for a
+/// negative first term, ` + ` or ` − ` between terms.
+pub(crate) fn push_sign(unicode: &mut String, latex: &mut String, negative: bool) {
+    match (unicode.is_empty(), negative) {
+        (true, true) => {
+            unicode.push('−');
+            latex.push('-');
+        }
+        (true, false) => {}
+        (false, true) => {
+            unicode.push_str(" − ");
+            latex.push_str(" - ");
+        }
+        (false, false) => {
+            unicode.push_str(" + ");
+            latex.push_str(" + ");
+        }
+    }
+}
+
+/// One line of an aligned display: `lhs = rhs`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Equation {
+    /// The left-hand side.
+    pub lhs: Math,
+    /// The right-hand side.
+    pub rhs: Math,
+}
+
+impl Equation {
+    /// `lhs = rhs`.
+    #[must_use]
+    pub fn new(lhs: Math, rhs: Math) -> Equation {
+        Equation { lhs, rhs }
+    }
+}
+
+/// A table cell: prose or mathematics.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Cell {
+    /// Plain text.
+    Text(String),
+    /// Mathematics.
+    Math(Math),
+}
+
+/// The pieces a section is made of.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Block {
+    /// A paragraph of prose.
+    Paragraph(String),
+    /// Aligned equations, one per line.
+    Equations(Vec<Equation>),
+    /// A table with a header row.
+    Table {
+        /// Column titles.
+        header: Vec<String>,
+        /// Rows of cells.
+        rows: Vec<Vec<Cell>>,
+    },
+    /// A figure written beside the document.
+    Figure {
+        /// The file name, relative to the document.
+        path: String,
+        /// What it shows.
+        caption: String,
+    },
+    /// A remark worth noticing, like the seed's *Obs.*
+    Remark(String),
+}
+
+/// A titled section.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Section {
+    /// Its title.
+    pub title: String,
+    /// 2 for a section, 3 for a subsection.
+    pub level: u8,
+    /// What it says, in order.
+    pub blocks: Vec<Block>,
+}
+
+impl Section {
+    /// An empty section.
+    #[must_use]
+    pub fn new(title: impl Into<String>, level: u8) -> Section {
+        Section {
+            title: title.into(),
+            level,
+            blocks: Vec::new(),
+        }
+    }
+
+    /// Adds a paragraph.
+    pub fn paragraph(&mut self, text: impl Into<String>) -> &mut Section {
+        self.blocks.push(Block::Paragraph(text.into()));
+        self
+    }
+
+    /// Adds a display of equations (nothing when `lines` is empty).
+    pub fn equations(&mut self, lines: Vec<Equation>) -> &mut Section {
+        if !lines.is_empty() {
+            self.blocks.push(Block::Equations(lines));
+        }
+        self
+    }
+
+    /// Adds a remark.
+    pub fn remark(&mut self, text: impl Into<String>) -> &mut Section {
+        self.blocks.push(Block::Remark(text.into()));
+        self
+    }
+}
+
+/// A whole solution.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Document {
+    /// The title.
+    pub title: String,
+    /// The sections, in order.
+    pub sections: Vec<Section>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::latex::{aligned_lines, breakable_latex, visible_width, LATEX_LINE};
+    use super::text::{wrap_equation, COLUMNS};
+    use super::*;
+
+    fn sample() -> Document {
+        let th = Expr::coordinate("theta");
+        let l = Expr::symbol("l");
+        let mut s = Section::new("Kinematics", 2);
+        s.paragraph("Position of the bob, 100% on the rod_1 & #2.");
+        s.equations(vec![Equation::new(
+            Math::label("r_P", r"\vec{r}_P"),
+            Math::vector(&[l * th.sin(), -(l * th.cos()), Expr::zero()]),
+        )]);
+        s.remark("θ = 0 is stable.");
+        s.blocks.push(Block::Table {
+            header: vec!["θ".into(), "stable".into()],
+            rows: vec![vec![
+                Cell::Math(Math::expr(Expr::zero())),
+                Cell::Text("yes".into()),
+            ]],
+        });
+        Document {
+            title: "Pendulum".into(),
+            sections: vec![s],
+        }
+    }
+
+    #[test]
+    fn vectors_read_like_the_seed() {
+        let th = Expr::coordinate("theta");
+        let l = Expr::symbol("l");
+        let v = Math::vector(&[l * th.sin(), -(l * th.cos()), Expr::zero()]);
+        assert_eq!(v.unicode, "ℓ sin θ x̂ − ℓ cos θ ŷ");
+        assert_eq!(
+            v.latex,
+            r"\ell \sin \theta \hat{x} - \ell \cos \theta \hat{y}"
+        );
+        let w = Math::vector(&[Expr::zero(), Expr::one(), th + l]);
+        assert_eq!(w.unicode, "ŷ + (θ + ℓ) ẑ");
+        assert_eq!(
+            Math::vector(&[Expr::zero(), Expr::zero(), Expr::zero()]).unicode,
+            "0"
+        );
+    }
+
+    #[test]
+    fn the_three_renderings_carry_the_same_content() {
+        let d = sample();
+        let text = d.to_text();
+        assert!(text.contains("Kinematics\n──────────"));
+        assert!(text.contains("  r_P = ℓ sin θ x̂ − ℓ cos θ ŷ"));
+        assert!(text.contains("Obs. θ = 0 is stable."));
+        let md = d.to_markdown();
+        assert!(md.contains("## Kinematics"));
+        assert!(md.contains("$$\n\\begin{aligned}\n\\vec{r}_P &= "));
+        assert!(md.contains("```{note}\nθ = 0 is stable.\n```"));
+        assert!(md.contains("| $0$ | yes |"));
+        let tex = d.to_latex();
+        assert!(tex.starts_with("\\documentclass"));
+        assert!(tex.ends_with("\\end{document}\n"));
+        assert!(tex.contains("100\\% on the rod\\_1 \\& \\#2."));
+        assert!(tex.contains("\\textit{Obs.} $\\theta$ = 0 is stable."));
+        assert_eq!(
+            tex.matches("\\begin{align*}").count(),
+            tex.matches("\\end{align*}").count()
+        );
+    }
+
+    #[test]
+    fn long_latex_breaks_at_top_level_signs_only() {
+        let rhs = format!(
+            "{} + \\left({} + c\\right) - {}",
+            "x".repeat(60),
+            "y".repeat(10),
+            "z".repeat(50)
+        );
+        let body = aligned_lines(&[Equation::new(
+            Math::label("f", "f"),
+            Math::label("f", rhs.clone()),
+        )]);
+        assert_eq!(body.lines().count(), 2, "{body}");
+        assert!(body.contains("\\left(yyyyyyyyyy + c\\right)"));
+        assert!(
+            body.lines()
+                .nth(1)
+                .is_some_and(|l| l.starts_with("&\\quad + \\left(")),
+            "{body}"
+        );
+        assert!(
+            body.lines().next().is_some_and(|l| l.ends_with("x \\\\")),
+            "{body}"
+        );
+    }
+
+    #[test]
+    fn long_equations_wrap_at_top_level_signs() {
+        let top = format!("{} + (a + b) − {}", "x".repeat(50), "y".repeat(40));
+        let nested = format!("−({} + {} − c)/(d + e)", "x".repeat(50), "y".repeat(40));
+        let long_lhs = wrap_equation(&format!("{} + {}", "a".repeat(50), "b".repeat(40)), "0");
+        assert!(
+            long_lhs.lines().all(|l| l.chars().count() <= COLUMNS),
+            "{long_lhs}"
+        );
+        for rhs in [top, nested] {
+            let out = wrap_equation("f", &rhs);
+            assert!(out.lines().count() >= 2, "{out}");
+            assert!(out.lines().all(|l| l.chars().count() <= COLUMNS), "{out}");
+            // Nothing is lost: the pieces put together give the equation back.
+            let joined: String = out.lines().map(str::trim).collect::<Vec<_>>().join(" ");
+            assert_eq!(joined, format!("f = {rhs}"));
+        }
+    }
+
+    #[test]
+    fn latex_breaks_inside_long_fractions_and_brackets() {
+        // A fraction whose numerator is too long for a line, as a long left-hand side.
+        let sum = (0..12)
+            .map(|i| format!(r"m_{i} \ddot{{x}}_{i} \left( a_{i} + b_{i} \right)"))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        let lhs = format!(r"\frac{{{sum}}}{{x_1 + x_2}}");
+        let body = aligned_lines(&[Equation::new(
+            Math::label("", lhs.clone()),
+            Math::label("0", "0"),
+        )]);
+        let rows: Vec<&str> = body.split(" \\\\\n").collect();
+        assert!(rows.len() > 2, "{body}");
+        for row in &rows {
+            assert!(visible_width(row) <= LATEX_LINE + 20, "{row}");
+            // Every row is valid on its own: braces balance and no \left is left open.
+            assert_eq!(row.matches('{').count(), row.matches('}').count(), "{row}");
+            assert_eq!(
+                row.matches("\\left").count(),
+                row.matches("\\right").count(),
+                "{row}"
+            );
+        }
+        assert!(rows[0].starts_with("& \\bigl("), "{body}");
+        assert!(
+            body.ends_with(r"\bigr) / \bigl(x_1 + x_2\bigr) = 0"),
+            "{body}"
+        );
+        // Short displays are untouched.
+        assert_eq!(breakable_latex(r"\frac{a}{b}"), r"\frac{a}{b}");
+        assert_eq!(
+            breakable_latex(r"\left|x\right| \left( a + b \right)"),
+            r"\bigl|x\bigr| \bigl( a + b \bigr)"
+        );
+    }
+}
