@@ -19,22 +19,21 @@ if [ ${#sizes[@]} -eq 0 ]; then sizes=(2 5 10); fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-best() { # best of 3 wall-clock seconds of "$@"
+best() { # best of 3 CPU seconds (user + system of the process and its threads) of "$@"
     for _ in 1 2 3; do
-        local start end
-        start=$(date +%s.%N)
-        "$@" > /dev/null 2>&1
-        end=$(date +%s.%N)
-        awk -v a="$start" -v b="$end" 'BEGIN{ print b - a }'
+        python3 -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+r = resource.getrusage(resource.RUSAGE_CHILDREN)
+print(r.ru_utime + r.ru_stime)' "$@"
     done | sort -g | head -1
 }
 
-printf '%-4s %14s %14s %8s\n' n "per-run derive" "derive once" ratio
+printf '%-4s %16s %16s %8s\n' n "per-run derive" "derive once" ratio
 for n in "${sizes[@]}"; do
     model="$work/nlink-$n.lag"
     "$root/bench/models/nlink.sh" "$n" > "$model"
     args=(simulate "$model" --sweep th1=0..1 --steps 199 --t-end 1)
     a=$(best "$old" "${args[@]}")
     b=$(best "$new" "${args[@]}")
-    awk -v n="$n" -v a="$a" -v b="$b" 'BEGIN{ printf "%-4s %12.3f s %12.3f s %7.1f×\n", n, a, b, a/b }'
+    awk -v n="$n" -v a="$a" -v b="$b" 'BEGIN{ printf "%-4s %12.3f s cpu %12.3f s cpu %7.1f×\n", n, a, b, a/b }'
 done
