@@ -321,8 +321,57 @@ impl Analysis {
             .output_step
             .or_else(|| from_model(|s| s.step.as_ref()));
         settings.step = options.step;
-        settings.validate()?;
+        settings
+            .validate()
+            .map_err(|e| self.locate_setting(e, options))?;
         Ok(settings)
+    }
+
+    /// A bad setting that came from the model's `simulate` statement, with its line and
+    /// column; one the caller gave stays as it is.
+    fn locate_setting(
+        &self,
+        error: simulation::SimulationError,
+        options: &SimulationOptions,
+    ) -> Error {
+        let simulation::SimulationError::InvalidSetting { setting, .. } = &error else {
+            return error.into();
+        };
+        let (given, from_model) = match *setting {
+            "start time" => (
+                options.t_start.is_some(),
+                statement_part(self, |s| s.from.as_ref()),
+            ),
+            "end time" => (
+                options.t_end.is_some(),
+                statement_part(self, |s| s.to.as_ref()),
+            ),
+            "rtol" => (
+                options.rtol.is_some(),
+                statement_part(self, |s| s.rtol.as_ref()),
+            ),
+            "atol" => (
+                options.atol.is_some(),
+                statement_part(self, |s| s.atol.as_ref()),
+            ),
+            "output step" => (
+                options.output_step.is_some(),
+                statement_part(self, |s| s.step.as_ref()),
+            ),
+            _ => (true, None),
+        };
+        match (given, from_model, self.source()) {
+            (false, Some(span), Some(source)) => {
+                let at = model::line_col(&source.text, span.start);
+                Error::Located {
+                    message: format!("in the `simulate` statement: {error}"),
+                    line: at.line,
+                    column: at.column,
+                    kind: crate::ErrorKind::Input,
+                }
+            }
+            _ => error.into(),
+        }
     }
 
     /// A prepared run: the equations (derived once) compiled with the current values, the
@@ -420,6 +469,15 @@ impl Analysis {
             })
             .collect())
     }
+}
+
+/// Where in the model text a part of its `simulate` statement is.
+fn statement_part(
+    analysis: &Analysis,
+    pick: fn(&model::Simulation) -> Option<&model::Expr>,
+) -> Option<model::Span> {
+    let statement = analysis.source()?.model.simulation()?;
+    pick(statement).map(|e| e.span)
 }
 
 /// One run of a sweep: its last row and how it ended.

@@ -136,3 +136,31 @@ fn values_set_later_reach_the_equilibria_and_the_report() {
     assert_eq!(error.kind(), lagrange::ErrorKind::Input);
     assert!(error.to_string().contains("theta_d"), "{error}");
 }
+
+#[test]
+fn a_bad_setting_in_the_model_points_at_its_line_and_column() {
+    let text = "coordinates x
+parameters m = 1, k = 4, tol = 1e-10
+frame N
+point P = x*N.x
+particle P mass m
+spring k from origin to P
+simulate to 2 atol tol
+";
+    let mut analysis = Analysis::from_text(text).unwrap();
+    // Set to 0 later, so the checker could not see it: the error still points at the model.
+    analysis.set_value("tol", 0.0).unwrap();
+    let error = analysis.simulate(&SimulationOptions::default()).unwrap_err();
+    match &error {
+        lagrange::Error::Located { line, column, .. } => assert_eq!((*line, *column), (7, 20)),
+        other => panic!("not located: {other}"),
+    }
+    assert!(error.to_string().contains("atol"), "{error}");
+    // The same value given by the caller is the caller's: no model location.
+    let options = SimulationOptions {
+        atol: Some(-1.0),
+        ..SimulationOptions::default()
+    };
+    let error = analysis.simulate(&options).unwrap_err();
+    assert!(matches!(error, lagrange::Error::Simulation(_)), "{error}");
+}
