@@ -150,7 +150,9 @@ simulate to 2 atol tol
     let mut analysis = Analysis::from_text(text).unwrap();
     // Set to 0 later, so the checker could not see it: the error still points at the model.
     analysis.set_value("tol", 0.0).unwrap();
-    let error = analysis.simulate(&SimulationOptions::default()).unwrap_err();
+    let error = analysis
+        .simulate(&SimulationOptions::default())
+        .unwrap_err();
     match &error {
         lagrange::Error::Located { line, column, .. } => assert_eq!((*line, *column), (7, 20)),
         other => panic!("not located: {other}"),

@@ -85,116 +85,113 @@ pub fn reactions_json(
 /// generalized reaction and multipliers, and whether the methods agree.
 #[must_use]
 pub fn reaction_text(r: &Reaction, unilateral: Option<&UnilateralReport>) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    // Each line of the text, as the terminal shows it.
-    macro_rules! say {
-        ($($arg:tt)*) => {{
-            let _ = writeln!(out, $($arg)*);
-        }};
-    }
     let kind = r.kind.map_or("constraint", |k| k.word());
-    match &r.point {
-        Some((point, _)) => say!(
+    let mut lines = vec![match &r.point {
+        Some((point, _)) => format!(
             "{} — {kind} at {point}, on {}:",
             r.name,
             r.members.join(", ")
         ),
-        None if r.driving => say!(
+        None if r.driving => format!(
             "{} — driven coordinate, the generalized force that drives it:",
             r.name
         ),
-        None => say!("{} — {kind}, generalized reaction:", r.name),
-    }
+        None => format!("{} — {kind}, generalized reaction:", r.name),
+    }];
     if let Some(f) = &r.force {
-        for (axis, x) in ["x", "y", "z"].iter().zip(f) {
-            if !x.is_zero() {
-                say!("  R_{axis} = {}", to_unicode(*x));
-            }
-        }
-        if f.iter().all(|x| x.is_zero()) {
-            say!("  R = 0");
-        }
+        lines.extend(components("R", f, true));
     }
     if let Some(c) = &r.couple {
-        for (axis, x) in ["x", "y", "z"].iter().zip(c) {
-            if !x.is_zero() {
-                say!("  C_{axis} = {}", to_unicode(*x));
-            }
-        }
-        if c.iter().all(|x| x.is_zero()) {
-            say!("  C = 0");
-        }
+        lines.extend(components("C", c, true));
     }
     if let Some(c) = &r.unbalanced_couple {
-        let parts: Vec<String> = ["x", "y", "z"]
+        let parts: Vec<String> = components("C", c, false)
             .iter()
-            .zip(c)
-            .filter(|(_, x)| !x.is_zero())
-            .map(|(axis, x)| format!("C_{axis} = {}", to_unicode(*x)))
+            .map(|l| l.trim().to_owned())
             .collect();
-        say!(
-            "  note: the motion also needs a couple about this point ({}), which a {} does not transmit: loads the release cannot attribute to these bodies act on them (other supports built into the coordinates, whose forces R then includes, or generalized forces), or the joint transmits a couple (ask for a clamp)",
-            parts.join(", "),
-            r.kind.map_or("constraint", |k| k.word())
-        );
+        lines.push(format!(
+            "  note: the motion also needs a couple about this point ({}), which a {kind} does not transmit: loads the release cannot attribute to these bodies act on them (other supports built into the coordinates, whose forces R then includes, or generalized forces), or the joint transmits a couple (ask for a clamp)",
+            parts.join(", ")
+        ));
     }
     if let Some(f) = &r.friction {
-        for (axis, x) in ["x", "y", "z"].iter().zip(f) {
-            if !x.is_zero() {
-                say!("  friction F_{axis} = {}", to_unicode(*x));
-            }
-        }
+        lines.extend(components("friction F", f, false));
     }
     if let Some((value, _)) = &r.along {
-        let (symbol, sign) = match r.kind {
-            Some(mechanics::ReleaseKind::Rope) => {
-                ("T", "pull only: the rope goes slack where T < 0")
-            }
-            _ => ("N", "push only: contact is lost where N < 0"),
-        };
-        say!("  {symbol} = {}   ({sign})", to_unicode(*value));
-        if let Some(u) = unilateral {
-            if let Some(along) = u.along_motion {
-                say!(
-                    "  along the motion (energy integral h = h₀): {symbol} = {}",
-                    to_unicode(along)
-                );
-            }
-            match &u.scan {
-                Some(Unilateral::Lost {
-                    coordinate,
-                    value,
-                    rate,
-                }) => say!(
-                    "  from the initial state, {symbol} changes sign at {coordinate} = {value:.6} (cos = {:.6}, rate {rate:.6}): the constraint is lost there",
-                    value.cos()
-                ),
-                Some(Unilateral::LostAtStart) => {
-                    say!("  {symbol} < 0 at the initial state: the constraint does not hold")
-                }
-                Some(Unilateral::Kept {
-                    coordinate,
-                    turning_point: Some(q),
-                }) => say!(
-                    "  from the initial state, {symbol} keeps its sign up to the turning point {coordinate} = {q:.6}"
-                ),
-                _ => {}
-            }
-        }
+        lines.extend(one_sided(r, *value, unilateral));
     }
-    for (q, e) in &r.generalized {
-        let label = if r.driving { "Q_drive" } else { "Q^R" };
-        say!("  {label}_{q} = {}", to_unicode(*e));
-    }
-    for (k, l) in r.multipliers.iter().enumerate() {
-        say!("  λ{} = {}", k + 1, to_unicode(*l));
-    }
+    let label = if r.driving { "Q_drive" } else { "Q^R" };
+    lines.extend(
+        r.generalized
+            .iter()
+            .map(|(q, e)| format!("  {label}_{q} = {}", to_unicode(*e))),
+    );
+    lines.extend(
+        r.multipliers
+            .iter()
+            .enumerate()
+            .map(|(k, l)| format!("  λ{} = {}", k + 1, to_unicode(*l))),
+    );
     let methods: Vec<&str> = r.methods.iter().map(|m| m.name()).collect();
-    say!(
+    lines.push(format!(
         "  methods: {} — {}",
         methods.join(", "),
         r.agreement.verdict()
-    );
-    out
+    ));
+    lines.join("\n") + "\n"
+}
+
+/// `  {name}_x = …` for each non-zero component; `  {name} = 0` when all vanish and
+/// `zero_line`.
+fn components(name: &str, v: &Vector, zero_line: bool) -> Vec<String> {
+    let mut lines: Vec<String> = ["x", "y", "z"]
+        .iter()
+        .zip(v)
+        .filter(|(_, x)| !x.is_zero())
+        .map(|(axis, x)| format!("  {name}_{axis} = {}", to_unicode(*x)))
+        .collect();
+    if lines.is_empty() && zero_line {
+        lines.push(format!("  {name} = 0"));
+    }
+    lines
+}
+
+/// A contact's normal force or a rope's tension: its sign rule, its value along the motion,
+/// and where it changes sign from the initial state.
+fn one_sided(r: &Reaction, value: cas::Expr, unilateral: Option<&UnilateralReport>) -> Vec<String> {
+    let (symbol, sign) = match r.kind {
+        Some(mechanics::ReleaseKind::Rope) => ("T", "pull only: the rope goes slack where T < 0"),
+        _ => ("N", "push only: contact is lost where N < 0"),
+    };
+    let mut lines = vec![format!("  {symbol} = {}   ({sign})", to_unicode(value))];
+    let Some(u) = unilateral else {
+        return lines;
+    };
+    if let Some(along) = u.along_motion {
+        lines.push(format!(
+            "  along the motion (energy integral h = h₀): {symbol} = {}",
+            to_unicode(along)
+        ));
+    }
+    match &u.scan {
+        Some(Unilateral::Lost {
+            coordinate,
+            value,
+            rate,
+        }) => lines.push(format!(
+            "  from the initial state, {symbol} changes sign at {coordinate} = {value:.6} (cos = {:.6}, rate {rate:.6}): the constraint is lost there",
+            value.cos()
+        )),
+        Some(Unilateral::LostAtStart) => lines.push(format!(
+            "  {symbol} < 0 at the initial state: the constraint does not hold"
+        )),
+        Some(Unilateral::Kept {
+            coordinate,
+            turning_point: Some(q),
+        }) => lines.push(format!(
+            "  from the initial state, {symbol} keeps its sign up to the turning point {coordinate} = {q:.6}"
+        )),
+        _ => {}
+    }
+    lines
 }
