@@ -341,9 +341,11 @@ fn solve_in_blocks(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Partia
             .iter()
             .flat_map(|a| {
                 branches.iter().map(move |b| {
-                    let mut p = a.clone();
-                    p.values.extend(b.values.iter().map(|(k, v)| (*k, *v)));
-                    p.conditions.extend(b.conditions.iter().copied());
+                    // Later blocks' conditions first: the order one solve over all the
+                    // equations gives (the conditions of the deepest step come first).
+                    let mut p = b.clone();
+                    p.values.extend(a.values.iter().map(|(k, v)| (*k, *v)));
+                    p.conditions.extend(a.conditions.iter().copied());
                     p
                 })
             })
