@@ -294,12 +294,14 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
         ));
         pure.equations(constraint_lines);
     }
-    if let Some(accelerations) = equations.accelerations() {
+    // Beyond the size budget the explicit accelerations would swamp the page (and say no
+    // more than M q̈ = f); the factored form adj(M) f/Δ is shown when it fits.
+    if let Some(accelerations) = crate::accelerations::for_report(equations) {
         pure.paragraph("Solved for the accelerations:");
         pure.equations(
             coordinates
                 .iter()
-                .zip(accelerations)
+                .zip(&accelerations)
                 .enumerate()
                 .map(|(j, (q, a))| {
                     Equation::new(rate(q, 2), acceleration(equations, notation, j, *a))
