@@ -40,7 +40,7 @@ pub struct Explicit {
     pub note: Option<String>,
 }
 
-/// The adjugate form of `M q̈ = f` for up to [`MAX_COORDINATES`] coordinates without
+/// The adjugate form of `M q̈ = f` for up to three coordinates without
 /// multipliers; `None` otherwise.
 #[must_use]
 pub fn adjugate_form(equations: &Equations) -> Option<AdjugateForm> {
