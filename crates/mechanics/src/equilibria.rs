@@ -191,23 +191,7 @@ pub fn steady_equations(
         });
     }
     let coordinates = equations.coordinates().to_vec();
-    for name in spinning {
-        if !coordinates.contains(name) {
-            return Err(EquilibriumError::NotCyclic { name: name.clone() });
-        }
-        let Some(q) = Expr::coordinate(name).as_symbol() else {
-            return Err(EquilibriumError::NotCyclic { name: name.clone() });
-        };
-        let appears = equations
-            .forcing()
-            .iter()
-            .chain(equations.mass_matrix().iter().flatten())
-            .chain([&equations.potential_energy()])
-            .any(|e| !e.diff(q).is_zero());
-        if appears {
-            return Err(EquilibriumError::NotCyclic { name: name.clone() });
-        }
-    }
+    check_cyclic(equations, spinning)?;
     let zero_rates: Vec<(Expr, Expr)> = coordinates
         .iter()
         .flat_map(|q| {
@@ -254,28 +238,7 @@ pub fn steady_equations(
         .filter(|(_, f)| !**f)
         .map(|(q, _)| *q)
         .collect();
-    let exact = solve_in_blocks(&residuals, &bound).map(|branches| {
-        branches
-            .into_iter()
-            .filter_map(|b| {
-                let values = symbols
-                    .iter()
-                    .zip(&free)
-                    .map(|(s, f)| {
-                        if *f {
-                            Some(Expr::zero())
-                        } else {
-                            b.values.get(s).copied()
-                        }
-                    })
-                    .collect::<Option<Vec<_>>>()?;
-                Some(Branch {
-                    values,
-                    conditions: b.conditions,
-                })
-            })
-            .collect()
-    });
+    let exact = solve_in_blocks(&residuals, &bound).map(|b| full_branches(b, &symbols, &free));
     let polynomial = if exact.is_none() {
         single_polynomial(&residuals, &symbols, &free, &periodic)
     } else {
@@ -292,6 +255,53 @@ pub fn steady_equations(
         exact,
         spinning: spinning.to_vec(),
     })
+}
+
+/// Every coordinate in `spinning` is one, and cyclic: absent from `f`, `M` and `V`.
+fn check_cyclic(equations: &Equations, spinning: &[String]) -> Result<(), EquilibriumError> {
+    for name in spinning {
+        if !equations.coordinates().contains(name) {
+            return Err(EquilibriumError::NotCyclic { name: name.clone() });
+        }
+        let Some(q) = Expr::coordinate(name).as_symbol() else {
+            return Err(EquilibriumError::NotCyclic { name: name.clone() });
+        };
+        let appears = equations
+            .forcing()
+            .iter()
+            .chain(equations.mass_matrix().iter().flatten())
+            .chain([&equations.potential_energy()])
+            .any(|e| !e.diff(q).is_zero());
+        if appears {
+            return Err(EquilibriumError::NotCyclic { name: name.clone() });
+        }
+    }
+    Ok(())
+}
+
+/// Exact solutions as branches with a value for every coordinate: free coordinates at 0; a
+/// solution that leaves a bound coordinate without a value is dropped.
+fn full_branches(solutions: Vec<Partial>, symbols: &[Symbol], free: &[bool]) -> Vec<Branch> {
+    solutions
+        .into_iter()
+        .filter_map(|b| {
+            let values = symbols
+                .iter()
+                .zip(free)
+                .map(|(s, f)| {
+                    if *f {
+                        Some(Expr::zero())
+                    } else {
+                        b.values.get(s).copied()
+                    }
+                })
+                .collect::<Option<Vec<_>>>()?;
+            Some(Branch {
+                values,
+                conditions: b.conditions,
+            })
+        })
+        .collect()
 }
 
 /// The polynomial form of the rest equations when exactly one coordinate is not free and
@@ -341,9 +351,11 @@ fn solve_in_blocks(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Partia
             .iter()
             .flat_map(|a| {
                 branches.iter().map(move |b| {
-                    let mut p = a.clone();
-                    p.values.extend(b.values.iter().map(|(k, v)| (*k, *v)));
-                    p.conditions.extend(b.conditions.iter().copied());
+                    // Later blocks' conditions first: the order one solve over all the
+                    // equations gives (the conditions of the deepest step come first).
+                    let mut p = b.clone();
+                    p.values.extend(a.values.iter().map(|(k, v)| (*k, *v)));
+                    p.conditions.extend(a.conditions.iter().copied());
                     p
                 })
             })
@@ -558,109 +570,17 @@ pub fn find_equilibria(
     bounds: &[(f64, f64)],
 ) -> Result<EquilibriumSet, EquilibriumError> {
     check_values(rest, values)?;
-    let pi = std::f64::consts::PI;
-    // A missing or reversed range falls back on the default −10..10.
-    let bounds: Vec<(f64, f64)> = rest
-        .periodic
-        .iter()
-        .enumerate()
-        .map(|(i, p)| match bounds.get(i) {
-            _ if *p => (-pi, pi),
-            Some((a, b)) if a <= b && a.is_finite() && b.is_finite() => (*a, *b),
-            _ => (-10.0, 10.0),
-        })
-        .collect();
-    let mut found: Vec<Equilibrium> = Vec::new();
-    let method = if let Some(branches) = &rest.exact {
-        let env = environment(values);
-        for b in branches {
-            if b.conditions.iter().any(|c| c.holds(&env) != Some(true)) {
-                continue;
-            }
-            let Some(mut x) = b
-                .values
-                .iter()
-                .map(|v| v.eval(&env).ok().filter(|v| v.is_finite()))
-                .collect::<Option<Vec<f64>>>()
-            else {
-                continue;
-            };
-            wrap(rest, &mut x);
-            if !is_rest_state(rest, &x, values) {
-                continue;
-            }
-            if found
-                .iter()
-                .any(|e| same_point(&e.values, &x, &rest.periodic))
-            {
-                continue;
-            }
-            found.push(Equilibrium {
-                values: x,
-                exact: Some(b.values.clone()),
-                conditions: b.conditions.clone(),
-            });
-        }
-        Method::Exact
+    let bounds = search_box(rest, bounds);
+    let (mut found, method) = if let Some(branches) = &rest.exact {
+        (exact_equilibria(rest, branches, values), Method::Exact)
     } else if let Some(roots) = rest
         .polynomial
         .as_ref()
         .and_then(|p| polynomial_equilibria(rest, p, values, &bounds))
     {
-        found = roots;
-        Method::Polynomial
+        (roots, Method::Polynomial)
     } else {
-        // Search over the coordinates that occur (free ones stay at 0), with the equations
-        // that involve them; the others are checked at every root found.
-        let n = rest.symbols.len();
-        let active: Vec<usize> = (0..n).filter(|i| !rest.free[*i]).collect();
-        let rows: Vec<usize> = (0..n)
-            .filter(|i| active.iter().any(|j| !rest.jacobian[*i][*j].is_zero()))
-            .collect();
-        let full = |y: &[f64]| -> Vec<f64> {
-            let mut x = vec![0.0; n];
-            for (k, i) in active.iter().enumerate() {
-                x[*i] = y[k];
-            }
-            x
-        };
-        let f = |y: &[f64]| -> Option<Vec<f64>> {
-            let x = full(y);
-            rows.iter()
-                .map(|i| eval_at(rest.residuals[*i], rest, &x, values))
-                .collect()
-        };
-        let j = |y: &[f64]| -> Option<Vec<f64>> {
-            let x = full(y);
-            rows.iter()
-                .flat_map(|i| active.iter().map(move |k| (*i, *k)))
-                .map(|(i, k)| eval_at(rest.jacobian[i][k], rest, &x, values))
-                .collect()
-        };
-        let search = numeric::roots::Search::new(
-            active.iter().map(|i| bounds[*i]).collect(),
-            active.iter().map(|i| rest.periodic[*i]).collect(),
-        );
-        let roots = if rows.len() == active.len() {
-            numeric::roots::find_roots(&f, &j, &search)
-        } else {
-            Vec::new()
-        };
-        for y in roots {
-            let x = full(&y);
-            if is_rest_state(rest, &x, values) {
-                found.push(Equilibrium {
-                    values: x,
-                    exact: None,
-                    conditions: Vec::new(),
-                });
-            }
-        }
-        if rest.free.iter().filter(|f| !**f).count() == 1 {
-            Method::Scan
-        } else {
-            Method::MultistartNewton
-        }
+        numeric_equilibria(rest, values, &bounds)
     };
     // −0.0 prints as "-0": fold it into 0.
     for e in &mut found {
@@ -681,6 +601,119 @@ pub fn find_equilibria(
         method,
         bounds,
     })
+}
+
+/// The search box: angles over a turn, other coordinates over their given range (a missing or
+/// reversed range falls back on the default −10..10).
+fn search_box(rest: &RestEquations, bounds: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let pi = std::f64::consts::PI;
+    rest.periodic
+        .iter()
+        .enumerate()
+        .map(|(i, p)| match bounds.get(i) {
+            _ if *p => (-pi, pi),
+            Some((a, b)) if a <= b && a.is_finite() && b.is_finite() => (*a, *b),
+            _ => (-10.0, 10.0),
+        })
+        .collect()
+}
+
+/// The exact branches that exist for these values, evaluated, checked and without repeats.
+fn exact_equilibria(
+    rest: &RestEquations,
+    branches: &[Branch],
+    values: &Values,
+) -> Vec<Equilibrium> {
+    let env = environment(values);
+    let mut found: Vec<Equilibrium> = Vec::new();
+    for b in branches {
+        if b.conditions.iter().any(|c| c.holds(&env) != Some(true)) {
+            continue;
+        }
+        let Some(mut x) = b
+            .values
+            .iter()
+            .map(|v| v.eval(&env).ok().filter(|v| v.is_finite()))
+            .collect::<Option<Vec<f64>>>()
+        else {
+            continue;
+        };
+        wrap(rest, &mut x);
+        if !is_rest_state(rest, &x, values) {
+            continue;
+        }
+        if found
+            .iter()
+            .any(|e| same_point(&e.values, &x, &rest.periodic))
+        {
+            continue;
+        }
+        found.push(Equilibrium {
+            values: x,
+            exact: Some(b.values.clone()),
+            conditions: b.conditions.clone(),
+        });
+    }
+    found
+}
+
+/// A numeric search over the coordinates that occur (free ones stay at 0), with the
+/// equations that involve them; the others are checked at every root found.
+fn numeric_equilibria(
+    rest: &RestEquations,
+    values: &Values,
+    bounds: &[(f64, f64)],
+) -> (Vec<Equilibrium>, Method) {
+    let n = rest.symbols.len();
+    let active: Vec<usize> = (0..n).filter(|i| !rest.free[*i]).collect();
+    let rows: Vec<usize> = (0..n)
+        .filter(|i| active.iter().any(|j| !rest.jacobian[*i][*j].is_zero()))
+        .collect();
+    let full = |y: &[f64]| -> Vec<f64> {
+        let mut x = vec![0.0; n];
+        for (k, i) in active.iter().enumerate() {
+            x[*i] = y[k];
+        }
+        x
+    };
+    let f = |y: &[f64]| -> Option<Vec<f64>> {
+        let x = full(y);
+        rows.iter()
+            .map(|i| eval_at(rest.residuals[*i], rest, &x, values))
+            .collect()
+    };
+    let j = |y: &[f64]| -> Option<Vec<f64>> {
+        let x = full(y);
+        rows.iter()
+            .flat_map(|i| active.iter().map(move |k| (*i, *k)))
+            .map(|(i, k)| eval_at(rest.jacobian[i][k], rest, &x, values))
+            .collect()
+    };
+    let search = numeric::roots::Search::new(
+        active.iter().map(|i| bounds[*i]).collect(),
+        active.iter().map(|i| rest.periodic[*i]).collect(),
+    );
+    let roots = if rows.len() == active.len() {
+        numeric::roots::find_roots(&f, &j, &search)
+    } else {
+        Vec::new()
+    };
+    let found = roots
+        .into_iter()
+        .map(|y| full(&y))
+        .filter(|x| is_rest_state(rest, x, values))
+        .map(|x| Equilibrium {
+            values: x,
+            exact: None,
+            conditions: Vec::new(),
+        })
+        .collect();
+    let method = if active.len() == 1 {
+        Method::Scan
+    } else {
+        Method::MultistartNewton
+    };
+    (found, method)
 }
 
 /// Whether two points are the same equilibrium (angles modulo 2π).

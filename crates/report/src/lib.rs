@@ -2,6 +2,7 @@
 //! (schema in `docs/json.md`, `"schema": 1`).
 #![warn(missing_docs)]
 
+pub mod accelerations;
 pub mod document;
 mod reactions;
 pub mod solution;
@@ -55,6 +56,7 @@ pub fn eom_json(system: &System, equations: &Equations) -> Value {
         .iter()
         .map(|e| json!({ "coordinate": e.coordinate, "constraint": e.constraint, "value": s(&e.value) }))
         .collect();
+    let explicit = accelerations::explicit(equations);
     let constraints: Vec<Value> = equations
         .constraint_names()
         .iter()
@@ -75,7 +77,12 @@ pub fn eom_json(system: &System, equations: &Equations) -> Value {
         "generalized_forces": equations.generalized_forces().iter().map(s).collect::<Vec<_>>(),
         "mass_matrix": rows(equations.mass_matrix()),
         "forcing": equations.forcing().iter().map(s).collect::<Vec<_>>(),
-        "accelerations": equations.accelerations().map(|a| a.iter().map(s).collect::<Vec<_>>()),
+        "accelerations": explicit.accelerations.as_ref().map(|a| a.iter().map(s).collect::<Vec<_>>()),
+        "acceleration_form": explicit.form.as_ref().map(|f| json!({
+            "determinant": s(&f.determinant),
+            "adjugate": rows(&f.adjugate),
+        })),
+        "accelerations_note": explicit.note,
         "eliminated": eliminated,
         "constraints": constraints,
         "first_integrals": first_integrals,

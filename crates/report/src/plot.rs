@@ -102,19 +102,35 @@ fn draw<DB: DrawingBackend>(
     let root = root.titled(title, (FAMILY, 26))?;
     let (top, bottom) = root.split_vertically(480);
     let (phase, energy_panel) = bottom.split_horizontally(600);
-    let t: Vec<f64> = rows.iter().map(|r| r[0]).collect();
-    let series = |k: usize| -> Vec<(f64, f64)> {
-        rows.iter()
-            .map(|r| (r[0], r[k]))
-            .filter(|(_, y)| y.is_finite())
-            .collect()
-    };
+    draw_histories(&top, columns, rows, n)?;
+    draw_portraits(&phase, rows, n)?;
+    draw_energy(&energy_panel, rows, n)
+}
 
-    // Time histories of the coordinates.
-    let coordinates: Vec<Vec<(f64, f64)>> = (1..=n).map(series).collect();
+/// The column `k` against time, finite values only.
+fn series(rows: &[Vec<f64>], k: usize) -> Vec<(f64, f64)> {
+    rows.iter()
+        .map(|r| (r[0], r[k]))
+        .filter(|(_, y)| y.is_finite())
+        .collect()
+}
+
+/// The time range of the rows.
+fn time_range(rows: &[Vec<f64>]) -> (f64, f64) {
+    bounds(rows.iter().map(|r| r[0]))
+}
+
+/// Time histories of the coordinates.
+fn draw_histories<DB: DrawingBackend>(
+    top: &DrawingArea<DB, Shift>,
+    columns: &[String],
+    rows: &[Vec<f64>],
+    n: usize,
+) -> DrawResult<DB> {
+    let t_range = time_range(rows);
+    let coordinates: Vec<Vec<(f64, f64)>> = (1..=n).map(|k| series(rows, k)).collect();
     let (lo, hi) = bounds(coordinates.iter().flatten().map(|p| p.1));
-    let t_range = bounds(t.iter().copied());
-    let mut chart = ChartBuilder::on(&top)
+    let mut chart = ChartBuilder::on(top)
         .margin(12)
         .caption("coordinates", (FAMILY, 20))
         .x_label_area_size(40)
@@ -145,7 +161,15 @@ fn draw<DB: DrawingBackend>(
         .border_style(RGBColor(200, 200, 200))
         .draw()?;
 
-    // Phase portraits q against q̇.
+    Ok(())
+}
+
+/// Phase portraits q against q̇.
+fn draw_portraits<DB: DrawingBackend>(
+    phase: &DrawingArea<DB, Shift>,
+    rows: &[Vec<f64>],
+    n: usize,
+) -> DrawResult<DB> {
     let portraits: Vec<Vec<(f64, f64)>> = (1..=n)
         .map(|k| {
             rows.iter()
@@ -156,7 +180,7 @@ fn draw<DB: DrawingBackend>(
         .collect();
     let x = bounds(portraits.iter().flatten().map(|p| p.0));
     let y = bounds(portraits.iter().flatten().map(|p| p.1));
-    let mut chart = ChartBuilder::on(&phase)
+    let mut chart = ChartBuilder::on(phase)
         .margin(12)
         .caption("phase portraits (q, dq/dt)", (FAMILY, 20))
         .x_label_area_size(40)
@@ -177,16 +201,25 @@ fn draw<DB: DrawingBackend>(
         ))?;
     }
 
-    // Energy error, and drift when constrained.
-    let energy = series(2 * n + 1);
-    let drift = series(2 * n + 2);
+    Ok(())
+}
+
+/// The energy error, and the constraint drift when constrained.
+fn draw_energy<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    rows: &[Vec<f64>],
+    n: usize,
+) -> DrawResult<DB> {
+    let t_range = time_range(rows);
+    let energy = series(rows, 2 * n + 1);
+    let drift = series(rows, 2 * n + 2);
     let constrained = drift.iter().any(|p| p.1 != 0.0);
     let values = energy
         .iter()
         .map(|p| p.1)
         .chain(drift.iter().filter(|_| constrained).map(|p| p.1));
     let (lo, hi) = bounds(values);
-    let mut chart = ChartBuilder::on(&energy_panel)
+    let mut chart = ChartBuilder::on(panel)
         .margin(12)
         .caption(
             if constrained {

@@ -198,54 +198,12 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
     let mut s = Section::new("Lagrange equations (II type)", 2);
     let coordinates = equations.coordinates();
     let n = coordinates.len();
-    let lagrangian = equations.lagrangian();
     if n <= STEP_BY_STEP_MAX {
         s.paragraph(
             "For every coordinate q: d/dt(∂L/∂q̇) − ∂L/∂q = Q_q, with Q_q the generalized force \
              of the loads not in U, by virtual work.",
         );
-        for (j, q) in coordinates.iter().enumerate() {
-            let (qs, qd) = (coordinate(q), rate(q, 1));
-            let Some(qd_symbol) = Expr::rate(q, 1).as_symbol() else {
-                continue;
-            };
-            let Some(q_symbol) = Expr::coordinate(q).as_symbol() else {
-                continue;
-            };
-            let momentum = lagrangian.diff(qd_symbol).normal();
-            let d_momentum = momentum.dt().normal();
-            let dl_dq = lagrangian.diff(q_symbol).normal();
-            let dl_dqd_label = Math::label(
-                format!("∂L/∂{}", qd.unicode),
-                format!(r"\frac{{\partial L}}{{\partial {}}}", qd.latex),
-            );
-            s.blocks
-                .push(Block::Paragraph(format!("Coordinate {}:", qs.unicode)));
-            s.equations(vec![
-                Equation::new(dl_dqd_label.clone(), notation.math(momentum)),
-                Equation::new(
-                    Math::label(
-                        format!("d/dt(∂L/∂{})", qd.unicode),
-                        format!(
-                            r"\frac{{d}}{{dt}} \frac{{\partial L}}{{\partial {}}}",
-                            qd.latex
-                        ),
-                    ),
-                    notation.math(d_momentum),
-                ),
-                Equation::new(
-                    Math::label(
-                        format!("∂L/∂{}", qs.unicode),
-                        format!(r"\frac{{\partial L}}{{\partial {}}}", qs.latex),
-                    ),
-                    notation.math(dl_dq),
-                ),
-                Equation::new(
-                    Math::label(format!("Q_{}", qs.unicode), format!("Q_{{{}}}", qs.latex)),
-                    notation.math(equations.generalized_forces()[j]),
-                ),
-            ]);
-        }
+        derivative_steps(&mut s, equations, notation);
     } else {
         s.paragraph(format!(
             "With {n} coordinates the intermediate derivatives are not written out; the \
@@ -253,7 +211,67 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
         ));
     }
 
-    // Collected apart, then appended after the steps.
+    let pure = pure_equations(equations, notation);
+    s.paragraph(format!(
+        "Pure equations of motion ({n} equation{} in M(q, t) q̈ = f(q, q̇, t) form):",
+        if n == 1 { "" } else { "s" }
+    ));
+    s.blocks.extend(pure.blocks);
+    s
+}
+
+/// For every coordinate: `∂L/∂q̇`, its time derivative, `∂L/∂q` and the generalized force.
+fn derivative_steps(s: &mut Section, equations: &Equations, notation: &Notation) {
+    let lagrangian = equations.lagrangian();
+    let coordinates = equations.coordinates();
+    for (j, q) in coordinates.iter().enumerate() {
+        let (qs, qd) = (coordinate(q), rate(q, 1));
+        let Some(qd_symbol) = Expr::rate(q, 1).as_symbol() else {
+            continue;
+        };
+        let Some(q_symbol) = Expr::coordinate(q).as_symbol() else {
+            continue;
+        };
+        let momentum = lagrangian.diff(qd_symbol).normal();
+        let d_momentum = momentum.dt().normal();
+        let dl_dq = lagrangian.diff(q_symbol).normal();
+        let dl_dqd_label = Math::label(
+            format!("∂L/∂{}", qd.unicode),
+            format!(r"\frac{{\partial L}}{{\partial {}}}", qd.latex),
+        );
+        s.blocks
+            .push(Block::Paragraph(format!("Coordinate {}:", qs.unicode)));
+        s.equations(vec![
+            Equation::new(dl_dqd_label.clone(), notation.math(momentum)),
+            Equation::new(
+                Math::label(
+                    format!("d/dt(∂L/∂{})", qd.unicode),
+                    format!(
+                        r"\frac{{d}}{{dt}} \frac{{\partial L}}{{\partial {}}}",
+                        qd.latex
+                    ),
+                ),
+                notation.math(d_momentum),
+            ),
+            Equation::new(
+                Math::label(
+                    format!("∂L/∂{}", qs.unicode),
+                    format!(r"\frac{{\partial L}}{{\partial {}}}", qs.latex),
+                ),
+                notation.math(dl_dq),
+            ),
+            Equation::new(
+                Math::label(format!("Q_{}", qs.unicode), format!("Q_{{{}}}", qs.latex)),
+                notation.math(equations.generalized_forces()[j]),
+            ),
+        ]);
+    }
+}
+
+/// The pure equations of motion, the constraints kept with multipliers, and the explicit
+/// accelerations when they fit.
+fn pure_equations(equations: &Equations, notation: &Notation) -> Section {
+    let coordinates = equations.coordinates();
     let mut pure = Section::new("Pure equations of motion", 3);
     let multipliers: Vec<Expr> = (1..=equations.constraint_names().len())
         .map(|i| Expr::symbol(&format!("lambda{i}")))
@@ -294,12 +312,14 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
         ));
         pure.equations(constraint_lines);
     }
-    if let Some(accelerations) = equations.accelerations() {
+    // Beyond the size budget the explicit accelerations would swamp the page (and say no
+    // more than M q̈ = f); the factored form adj(M) f/Δ is shown when it fits.
+    if let Some(accelerations) = crate::accelerations::for_report(equations) {
         pure.paragraph("Solved for the accelerations:");
         pure.equations(
             coordinates
                 .iter()
-                .zip(accelerations)
+                .zip(&accelerations)
                 .enumerate()
                 .map(|(j, (q, a))| {
                     Equation::new(rate(q, 2), acceleration(equations, notation, j, *a))
@@ -307,12 +327,7 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
                 .collect(),
         );
     }
-    s.paragraph(format!(
-        "Pure equations of motion ({n} equation{} in M(q, t) q̈ = f(q, q̇, t) form):",
-        if n == 1 { "" } else { "s" }
-    ));
-    s.blocks.extend(pure.blocks);
-    s
+    pure
 }
 
 /// An explicit acceleration as people write it. Where the equation of `q_j` involves no other

@@ -4,7 +4,7 @@
 //! frequencies and modes.
 
 use cas::Expr;
-use mechanics::equilibria::{EquilibriumSet, RestEquations};
+use mechanics::equilibria::{Equilibrium, EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
 
 use crate::document::{push_sign, Block, Cell, Equation, Math, Notation, Section};
@@ -73,6 +73,22 @@ fn equilibria_section(
         s.paragraph("No equilibrium for these parameter values.");
         return s;
     }
+    s.blocks.push(equilibria_table(rest, set, lin, notation));
+    for (i, (e, l)) in set.equilibria.iter().zip(lin).enumerate() {
+        if let Some(sentence) = stability_sentence(i, e, l) {
+            s.paragraph(sentence);
+        }
+    }
+    s
+}
+
+/// The table of equilibria: values (exact ones with their numbers) and a stability word.
+fn equilibria_table(
+    rest: &RestEquations,
+    set: &EquilibriumSet,
+    lin: &[LinearizedResult],
+    notation: &Notation,
+) -> Block {
     let mut header = vec!["#".to_string()];
     header.extend(rest.coordinates.iter().map(|q| coordinate(q).unicode));
     header.push("stability".to_string());
@@ -106,37 +122,34 @@ fn equilibria_section(
             row
         })
         .collect();
-    s.blocks.push(Block::Table { header, rows });
-    for (i, (e, l)) in set.equilibria.iter().zip(lin).enumerate() {
-        let mut sentence = String::new();
-        match l {
-            Ok(l) => sentence.push_str(&format!("Equilibrium {i}: {}.", l.criterion)),
-            Err(err) => {
-                sentence.push_str(&format!("Equilibrium {i}: stability not decided: {err}."))
-            }
-        }
-        let conditions: Vec<String> = e
-            .conditions
-            .iter()
-            .map(|c| {
-                condition_text(c, cas::print::to_unicode)
-                    .replace(" != ", " ≠ ")
-                    .replace(" <= ", " ≤ ")
-                    .replace(" >= ", " ≥ ")
-                    .replace(" == ", " = ")
-            })
-            .collect();
-        if !conditions.is_empty() {
-            sentence.push_str(&format!(
-                " It exists only when {}.",
-                conditions.join(" and ")
-            ));
-        }
-        if !sentence.is_empty() {
-            s.paragraph(sentence.trim_start().to_string());
-        }
+    Block::Table { header, rows }
+}
+
+/// The criterion that decided equilibrium `i`'s stability, and when it exists.
+fn stability_sentence(i: usize, e: &Equilibrium, l: &LinearizedResult) -> Option<String> {
+    let mut sentence = String::new();
+    match l {
+        Ok(l) => sentence.push_str(&format!("Equilibrium {i}: {}.", l.criterion)),
+        Err(err) => sentence.push_str(&format!("Equilibrium {i}: stability not decided: {err}.")),
     }
-    s
+    let conditions: Vec<String> = e
+        .conditions
+        .iter()
+        .map(|c| {
+            condition_text(c, cas::print::to_unicode)
+                .replace(" != ", " ≠ ")
+                .replace(" <= ", " ≤ ")
+                .replace(" >= ", " ≥ ")
+                .replace(" == ", " = ")
+        })
+        .collect();
+    if !conditions.is_empty() {
+        sentence.push_str(&format!(
+            " It exists only when {}.",
+            conditions.join(" and ")
+        ));
+    }
+    (!sentence.is_empty()).then(|| sentence.trim_start().to_string())
 }
 
 /// A numeric matrix in both notations.

@@ -33,46 +33,11 @@ pub fn reactions_section(
             None => format!("{} — {kind}, generalized reaction", r.name),
         };
         s.paragraph(format!("{title}:"));
-        let mut lines = Vec::new();
-        if let Some(force) = &r.force {
-            lines.push(Equation::new(
-                Math::label(
-                    format!("R_{}", r.name),
-                    format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
-                ),
-                notation.vector(force),
-            ));
-        }
-        if let Some(couple) = &r.couple {
-            lines.push(Equation::new(
-                Math::label(
-                    format!("C_{}", r.name),
-                    format!(r"\vec{{C}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
-                ),
-                notation.vector(couple),
-            ));
-        }
         let symbol = match r.kind {
             Some(ReleaseKind::Rope) => "T",
             _ => "N",
         };
-        if let Some((value, _)) = &r.along {
-            lines.push(Equation::new(
-                Math::label(symbol, symbol),
-                notation.math(*value),
-            ));
-        }
-        for (q, e) in &r.generalized {
-            let q_math = Math::expr(cas::Expr::coordinate(q));
-            lines.push(Equation::new(
-                Math::label(
-                    format!("Q^R_{}", q_math.unicode),
-                    format!("Q^R_{{{}}}", q_math.latex),
-                ),
-                notation.math(*e),
-            ));
-        }
-        s.equations(lines);
+        s.equations(reaction_lines(r, symbol, notation));
         if let Some(c) = &r.unbalanced_couple {
             s.remark(format!(
                 "The motion also needs a couple about this point, {}, which a {kind} does not \
@@ -83,51 +48,12 @@ pub fn reactions_section(
             ));
         }
         if r.along.is_some() {
-            let sense = if symbol == "T" {
-                "a rope pulls only: it goes slack where T < 0"
-            } else {
-                "a contact pushes only: it is lost where N < 0"
-            };
-            s.paragraph(format!("One-sided: {sense}."));
-            if let Some(u) = unilateral.get(i).and_then(Option::as_ref) {
-                if let Some(along) = u.along_motion {
-                    s.equations(vec![Equation::new(
-                        Math::label(
-                            format!("{symbol} (along the motion, h = h₀)"),
-                            format!(r"{symbol}\big|_{{h = h_0}}"),
-                        ),
-                        notation.math(along),
-                    )]);
-                }
-                match &u.scan {
-                    Some(Unilateral::Lost {
-                        coordinate,
-                        value,
-                        rate,
-                    }) => {
-                        s.remark(format!(
-                            "From the initial state, {symbol} changes sign at {coordinate} = {value:.4} \
-                             (rate {rate:.4}): the constraint is lost there, and the model no longer \
-                             describes the motion beyond that point."
-                        ));
-                    }
-                    Some(Unilateral::LostAtStart) => {
-                        s.remark(format!(
-                            "{symbol} < 0 at the initial state: the constraint does not hold."
-                        ));
-                    }
-                    Some(Unilateral::Kept {
-                        coordinate,
-                        turning_point: Some(q),
-                    }) => {
-                        s.remark(format!(
-                            "From the initial state, {symbol} keeps its sign up to the turning point \
-                             {coordinate} = {q:.4}: the constraint holds for the whole motion."
-                        ));
-                    }
-                    _ => {}
-                }
-            }
+            one_sided(
+                &mut s,
+                symbol,
+                unilateral.get(i).and_then(Option::as_ref),
+                notation,
+            );
         }
         let methods: Vec<&str> = r.methods.iter().map(|m| m.name()).collect();
         s.paragraph(format!(
@@ -137,6 +63,101 @@ pub fn reactions_section(
         ));
     }
     s
+}
+
+/// The force, couple, normal force or tension, and generalized reactions of `r`.
+fn reaction_lines(r: &Reaction, symbol: &str, notation: &Notation) -> Vec<Equation> {
+    let mut lines = Vec::new();
+    if let Some(force) = &r.force {
+        lines.push(Equation::new(
+            Math::label(
+                format!("R_{}", r.name),
+                format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
+            ),
+            notation.vector(force),
+        ));
+    }
+    if let Some(couple) = &r.couple {
+        lines.push(Equation::new(
+            Math::label(
+                format!("C_{}", r.name),
+                format!(r"\vec{{C}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
+            ),
+            notation.vector(couple),
+        ));
+    }
+    if let Some((value, _)) = &r.along {
+        lines.push(Equation::new(
+            Math::label(symbol, symbol),
+            notation.math(*value),
+        ));
+    }
+    for (q, e) in &r.generalized {
+        let q_math = Math::expr(cas::Expr::coordinate(q));
+        lines.push(Equation::new(
+            Math::label(
+                format!("Q^R_{}", q_math.unicode),
+                format!("Q^R_{{{}}}", q_math.latex),
+            ),
+            notation.math(*e),
+        ));
+    }
+    lines
+}
+
+/// What a one-sided constraint's sign says: the value along the motion and where, from the
+/// initial state, the constraint is lost or kept.
+fn one_sided(
+    s: &mut Section,
+    symbol: &str,
+    unilateral: Option<&UnilateralReport>,
+    notation: &Notation,
+) {
+    let sense = if symbol == "T" {
+        "a rope pulls only: it goes slack where T < 0"
+    } else {
+        "a contact pushes only: it is lost where N < 0"
+    };
+    s.paragraph(format!("One-sided: {sense}."));
+    if let Some(u) = unilateral {
+        if let Some(along) = u.along_motion {
+            s.equations(vec![Equation::new(
+                Math::label(
+                    format!("{symbol} (along the motion, h = h₀)"),
+                    format!(r"{symbol}\big|_{{h = h_0}}"),
+                ),
+                notation.math(along),
+            )]);
+        }
+        match &u.scan {
+            Some(Unilateral::Lost {
+                coordinate,
+                value,
+                rate,
+            }) => {
+                s.remark(format!(
+                    "From the initial state, {symbol} changes sign at {coordinate} = {value:.4} \
+                     (rate {rate:.4}): the constraint is lost there, and the model no longer \
+                     describes the motion beyond that point."
+                ));
+            }
+            Some(Unilateral::LostAtStart) => {
+                s.remark(format!(
+                    "{symbol} < 0 at the initial state: the constraint does not hold."
+                ));
+            }
+            Some(Unilateral::Kept {
+                coordinate,
+                turning_point: Some(q),
+            }) => {
+                s.remark(format!(
+                    "From the initial state, {symbol} keeps its sign up to the turning point \
+                     {coordinate} = {q:.4}: the constraint holds for the whole motion."
+                ));
+            }
+            _ => {}
+        }
+    }
 }
 
 fn latex_name(name: &str) -> String {

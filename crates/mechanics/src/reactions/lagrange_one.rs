@@ -50,25 +50,21 @@ pub(super) fn release_reaction(
         .collect();
     let zero = at_rest(&extra);
     let residuals = residuals(&release.name, &release.system, motion, &zero)?;
+    let residual_of = |name: &String| {
+        residuals
+            .iter()
+            .find(|(q, _)| q == name)
+            .map_or_else(Expr::zero, |(_, r)| *r)
+    };
     let lagrange: Vec<Expr> = release
         .displacements
         .iter()
-        .map(|(u, _)| {
-            residuals
-                .iter()
-                .find(|(q, _)| q == u)
-                .map_or_else(Expr::zero, |(_, r)| *r)
-        })
+        .map(|(u, _)| residual_of(u))
         .collect();
     let turning: Vec<Expr> = release
         .rotations
         .iter()
-        .map(|(psi, _)| {
-            residuals
-                .iter()
-                .find(|(q, _)| q == psi)
-                .map_or_else(Expr::zero, |(_, r)| *r)
-        })
+        .map(|(psi, _)| residual_of(psi))
         .collect();
     let mut newton = newton_euler(original, release, motion, &zero);
     newton.extend(moment_equation(original, release, motion, &zero));
@@ -78,24 +74,7 @@ pub(super) fn release_reaction(
         .zip(&newton)
         .map(|(a, b)| compare(*a, *b))
         .fold(Agreement::Exact, worst);
-    let turned = (!release.rotations.is_empty()).then(|| {
-        let mut couple: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
-        for (c, (_, axis)) in turning.iter().zip(&release.rotations) {
-            for (k, x) in axis.iter().enumerate() {
-                couple[k] += *c * *x;
-            }
-        }
-        couple.map(Expr::normal)
-    });
-    let (couple, unbalanced_couple) = if release.kind == ReleaseKind::Clamp {
-        (turned, None)
-    } else {
-        let needed = turned.filter(|c| {
-            c.iter()
-                .any(|x| compare(*x, Expr::zero()) == Agreement::Disagree)
-        });
-        (None, needed)
-    };
+    let (couple, unbalanced_couple) = couples(release, &turning);
     let mut force: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
     for (r, (_, d)) in lagrange.iter().zip(&release.displacements) {
         for (k, x) in d.iter().enumerate() {
@@ -137,6 +116,30 @@ pub(super) fn release_reaction(
         methods,
         agreement,
     })
+}
+
+/// The couple at the point from the rotations' residuals: the reaction couple of a clamp, or
+/// for a hinge or a rolling contact the couple the motion needs although the joint transmits
+/// none (when it is not zero).
+fn couples(release: &Release, turning: &[Expr]) -> (Option<Vector>, Option<Vector>) {
+    let turned = (!release.rotations.is_empty()).then(|| {
+        let mut couple: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
+        for (c, (_, axis)) in turning.iter().zip(&release.rotations) {
+            for (k, x) in axis.iter().enumerate() {
+                couple[k] += *c * *x;
+            }
+        }
+        couple.map(Expr::normal)
+    });
+    if release.kind == ReleaseKind::Clamp {
+        (turned, None)
+    } else {
+        let needed = turned.filter(|c| {
+            c.iter()
+                .any(|x| compare(*x, Expr::zero()) == Agreement::Disagree)
+        });
+        (None, needed)
+    }
 }
 
 pub(super) fn constraint_reaction(
