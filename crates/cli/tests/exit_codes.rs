@@ -103,6 +103,20 @@ fn degenerate_mechanics_is_two() {
 }
 
 #[test]
+fn contradictory_constraints_are_two_and_named() {
+    let model = temp(
+        "contradictory.lag",
+        "coordinates x, y\nparameters m = 1\nframe N\npoint P = x*N.x + y*N.y\nparticle P mass m\n\
+         constraint a: x = 1\nconstraint b: x = 2\nreactions a, b\nsimulate to 1\n",
+    );
+    for command in ["eom", "reactions", "solve", "simulate"] {
+        let (code, err) = code(&[command, &model]);
+        assert_eq!(code, Some(2), "{command}: {err}");
+        assert!(err.contains("`a`, `b` cannot all hold"), "{command}: {err}");
+    }
+}
+
+#[test]
 fn a_run_that_fails_part_way_is_three() {
     // The mass matrix 4 m x² vanishes at x = 0, which the motion reaches at t = 1/2.
     let model = temp(

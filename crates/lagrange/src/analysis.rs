@@ -254,12 +254,19 @@ impl Analysis {
     /// The equations of motion (Lagrange II), derived once.
     ///
     /// # Errors
-    /// [`Error::Mechanics`] when the system is degenerate (a singular mass matrix, …).
+    /// [`Error::Mechanics`] when the system is degenerate (a singular mass matrix, …), or
+    /// [`Error::Constraints`] naming constraints that contradict or restate one another.
     pub fn equations(&self) -> Result<&Equations, Error> {
         self.equations
             .get_or_init(|| {
                 self.derivations.fetch_add(1, Ordering::Relaxed);
-                mechanics::derive(&self.system).map_err(Error::from)
+                let equations = mechanics::derive(&self.system)?;
+                // Constraints that contradict or restate one another leave the multipliers
+                // undetermined: nothing downstream is meaningful.
+                match mechanics::constraint_conflict(&self.system, &equations) {
+                    Some(conflict) => Err(conflict.into()),
+                    None => Ok(equations),
+                }
             })
             .as_ref()
             .map_err(Clone::clone)

@@ -78,6 +78,9 @@ pub enum Error {
     /// The equations of motion could not be derived.
     #[error(transparent)]
     Mechanics(#[from] mechanics::MechanicsError),
+    /// Constraints that contradict or restate one another.
+    #[error(transparent)]
+    Constraints(#[from] mechanics::ConstraintConflict),
     /// The reactions could not be derived.
     #[error(transparent)]
     Reactions(#[from] mechanics::ReactionError),
