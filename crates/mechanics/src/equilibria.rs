@@ -298,7 +298,7 @@ fn full_branches(solutions: Vec<Partial>, symbols: &[Symbol], free: &[bool]) -> 
                 .collect::<Option<Vec<_>>>()?;
             Some(Branch {
                 values,
-                conditions: b.conditions,
+                conditions: in_stable_order(b.conditions),
             })
         })
         .collect()
@@ -322,6 +322,26 @@ fn single_polynomial(
         return None;
     };
     rest_polynomial(*residual, index, x, periodic[index])
+}
+
+/// The conditions of a branch in an order that does not depend on how the solve went (which
+/// block came first, which arena ids the expressions got): by their SymPy text, duplicates
+/// dropped. Reports print them in this order.
+fn in_stable_order(conditions: Vec<Condition>) -> Vec<Condition> {
+    let key = |c: &Condition| {
+        let (tag, e) = match c {
+            Condition::AbsAtMostOne(e) => (0, e),
+            Condition::NonNegative(e) => (1, e),
+            Condition::NonZero(e) => (2, e),
+            Condition::Zero(e) => (3, e),
+            _ => (4, &Expr::zero()),
+        };
+        (tag, cas::print::to_sympy(*e))
+    };
+    let mut keyed: Vec<_> = conditions.into_iter().map(|c| (key(&c), c)).collect();
+    keyed.sort_by(|a, b| a.0.cmp(&b.0));
+    keyed.dedup_by(|a, b| a.0 == b.0);
+    keyed.into_iter().map(|(_, c)| c).collect()
 }
 
 /// A partial exact solution.
