@@ -93,7 +93,8 @@ pub enum Command {
     Simulate(crate::commands::simulate::SimulateArgs),
     /// Print the normal form of an expression (SymPy syntax; rates as `q_d`, `q_dd`).
     Simplify {
-        /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)".
+        /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)" (a leading minus needs no `--`).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// Output dialect.
         #[arg(long, value_enum, default_value_t = Format::Unicode)]
@@ -106,7 +107,8 @@ pub enum Command {
     /// Print the derivative of an expression with respect to a variable; `t` means the total
     /// time derivative (coordinates `q` have rates `q_d`).
     Diff {
-        /// The expression.
+        /// The expression (a leading minus needs no `--`).
+        #[arg(allow_hyphen_values = true)]
         expr: String,
         /// The variable: a symbol name, a rate like `theta_d`, or `t`.
         var: String,

@@ -163,3 +163,13 @@ fn a_reader_that_stops_early_does_not_make_it_panic() {
     let _ = std::fs::remove_file(&path);
     assert!(!err.contains("panicked"), "{err}");
 }
+
+#[test]
+fn an_expression_may_start_with_a_minus() {
+    let o = lagrange(&["simplify", "-x^2", "--format", "sympy"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o).trim(), "-x**2");
+    let o = lagrange(&["diff", "-x^2", "x", "--format", "sympy"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o).trim(), "-2*x");
+}
