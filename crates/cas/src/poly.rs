@@ -458,28 +458,29 @@ impl Poly {
         }
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
         acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
-        let mut extra: Vec<Poly> = Vec::new();
+        let mut accumulate = |m: Monomial, c: Number| match acc.get_mut(&m) {
+            Some(v) => *v = v.add(&c),
+            None => {
+                acc.insert(m, c);
+            }
+        };
         for (ma, ca) in &small.terms {
             for (mb, cb) in &large.terms {
                 let m = mul_monomials(ma, mb);
                 let c = ca.mul(cb);
                 if rewrite && m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
-                    extra.push(rewrite_term(m, c));
+                    // The rewritten terms are canonical monomials: they go into the same
+                    // accumulator (adding each rewritten product to a sorted result instead
+                    // made a product with many `sin²` terms quadratic in its size).
+                    for (rm, rc) in rewrite_term(m, c).terms {
+                        accumulate(rm, rc);
+                    }
                     continue;
                 }
-                match acc.get_mut(&m) {
-                    Some(v) => *v = v.add(&c),
-                    None => {
-                        acc.insert(m, c);
-                    }
-                }
+                accumulate(m, c);
             }
         }
-        let mut p = Poly::from_terms(acc.into_iter().collect());
-        for e in extra {
-            p = p.add(&e);
-        }
-        p
+        Poly::from_terms(acc.into_iter().collect())
     }
 
     /// `self^k`.
