@@ -190,6 +190,22 @@ pub(crate) struct Poly {
     pub(crate) terms: Vec<(Monomial, Number)>,
 }
 
+/// A monomial ordered by [`cmp_monomial`], as a key of ordered maps.
+#[derive(PartialEq, Eq)]
+struct Ordered(Monomial);
+
+impl PartialOrd for Ordered {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ordered {
+    fn cmp(&self, other: &Self) -> Ordering {
+        cmp_monomial(&self.0, &other.0)
+    }
+}
+
 /// Lexicographic comparison of sparse exponent vectors (the smallest atom id is the most
 /// significant variable).
 pub(crate) fn cmp_monomial(a: &Monomial, b: &Monomial) -> Ordering {
@@ -458,29 +474,46 @@ impl Poly {
         }
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
         acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
-        let mut accumulate = |m: Monomial, c: Number| match acc.get_mut(&m) {
-            Some(v) => *v = v.add(&c),
-            None => {
-                acc.insert(m, c);
-            }
-        };
+        // Products are gathered raw first and each distinct monomial is rewritten once: the
+        // square of a velocity component has many products that share a monomial, and rewriting
+        // each product (`sin²θ1 sin²θ2 → (1 − cos²θ1)(1 − cos²θ2)`) before merging multiplied the
+        // work by the size of the rewritten form.
         for (ma, ca) in &small.terms {
             for (mb, cb) in &large.terms {
                 let m = mul_monomials(ma, mb);
                 let c = ca.mul(cb);
-                if rewrite && m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
-                    // The rewritten terms are canonical monomials: they go into the same
-                    // accumulator (adding each rewritten product to a sorted result instead
-                    // made a product with many `sin²` terms quadratic in its size).
-                    for (rm, rc) in rewrite_term(m, c).terms {
-                        accumulate(rm, rc);
+                match acc.get_mut(&m) {
+                    Some(v) => *v = v.add(&c),
+                    None => {
+                        acc.insert(m, c);
                     }
-                    continue;
                 }
-                accumulate(m, c);
             }
         }
-        Poly::from_terms(acc.into_iter().collect())
+        if !rewrite {
+            return Poly::from_terms(acc.into_iter().collect());
+        }
+        let mut terms = Vec::with_capacity(acc.len());
+        let mut rewritten: FxHashMap<Monomial, Number> = FxHashMap::default();
+        for (m, c) in acc {
+            if c.is_exact_zero() {
+                continue;
+            }
+            if m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
+                for (rm, rc) in rewrite_term(m, c).terms {
+                    match rewritten.get_mut(&rm) {
+                        Some(v) => *v = v.add(&rc),
+                        None => {
+                            rewritten.insert(rm, rc);
+                        }
+                    }
+                }
+            } else {
+                terms.push((m, c));
+            }
+        }
+        terms.extend(rewritten);
+        Poly::from_terms(terms)
     }
 
     /// `self^k`.
@@ -576,19 +609,37 @@ impl Poly {
         }
         let (lead_m, lead_c) = divisor.terms.first()?;
         let lead_inv = lead_c.recip()?;
-        let mut rem = self.clone();
+        // The remainder in an ordered map: each quotient term updates only the terms it touches
+        // (subtracting from the whole remainder at each step made a division quadratic in the
+        // size of the dividend).
+        let mut rem: std::collections::BTreeMap<Ordered, Number> = self
+            .terms
+            .iter()
+            .map(|(m, c)| (Ordered(m.clone()), c.clone()))
+            .collect();
         let mut quotient: Vec<(Monomial, Number)> = Vec::new();
-        let mut guard = 0usize;
-        while let Some((m, c)) = rem.terms.first().cloned() {
+        while let Some((Ordered(m), c)) = rem.pop_last() {
             let qm = div_monomials(&m, lead_m)?;
             let qc = c.mul(&lead_inv);
-            let term = Poly {
-                terms: vec![(qm.clone(), qc.clone())],
-            };
-            rem = rem.sub(&divisor.mul_raw(&term));
+            for (dm, dc) in &divisor.terms[1..] {
+                let key = Ordered(mul_monomials(dm, &qm));
+                let delta = dc.mul(&qc).neg();
+                match rem.entry(key) {
+                    std::collections::btree_map::Entry::Occupied(mut o) => {
+                        let v = o.get().add(&delta);
+                        if v.is_exact_zero() {
+                            o.remove();
+                        } else {
+                            *o.get_mut() = v;
+                        }
+                    }
+                    std::collections::btree_map::Entry::Vacant(v) => {
+                        v.insert(delta);
+                    }
+                }
+            }
             quotient.push((qm, qc));
-            guard += 1;
-            if guard > 1_000_000 {
+            if quotient.len() > 1_000_000 {
                 return None;
             }
         }
