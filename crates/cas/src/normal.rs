@@ -2,7 +2,8 @@
 //!
 //! Conversion to the normal form expands products and integer powers, expands `sin`, `cos` and
 //! `tan` of sums and integer multiples into products of `sin`/`cos` of single angles (and
-//! evaluates them exactly at multiples of π/6 and π/4), reduces `sin²` with `sin² + cos² = 1`,
+//! evaluates them exactly at multiples of π/6 and π/4; multiples above `MAX_EXPANDED_MULTIPLE`
+//! are angles of their own), reduces `sin²` with `sin² + cos² = 1`,
 //! reduces powers of roots, splits `exp` of sums, and brings everything over one denominator in
 //! lowest terms (polynomial GCD). The denominator is kept free of `sin` atoms and square roots
 //! (by multiplying with a conjugate), integer-primitive, with a positive leading term in the
@@ -728,13 +729,18 @@ impl Normalizer {
             let sign = if c.is_negative() { -1 } else { 1 };
             return multiple_angle(&Rf::atom(c_id), &Rf::atom(s_id), sign);
         }
-        // c = n/q: the angle unit is m/q, taken `n` times.
-        let (angle_unit, multiple) = if q == 1 {
+        // c = n/q: the angle unit is m/q, taken `n` times. A large multiple stays an angle of its
+        // own (see `MAX_EXPANDED_MULTIPLE`); a negative one keeps the parity rule.
+        let small = c.to_small_ratio().is_some() && n.unsigned_abs() <= MAX_EXPANDED_MULTIPLE;
+        let (angle_unit, multiple) = if !small {
+            (
+                Expr::number(c.abs()) * unit,
+                if c.is_negative() { -1 } else { 1 },
+            )
+        } else if q == 1 {
             (unit, n)
-        } else if c.to_small_ratio().is_some() {
-            (unit * Expr::rational(1, q).unwrap_or_else(Expr::one), n)
         } else {
-            (Expr::number(c.clone()) * unit, 1)
+            (unit * Expr::rational(1, q).unwrap_or_else(Expr::one), n)
         };
         let (s_id, c_id) = trig_atoms(angle_unit);
         let base_cos = Rf::atom(c_id);
@@ -770,6 +776,13 @@ impl Normalizer {
         acc
     }
 }
+
+/// The largest multiple `n` for which `sin nθ` and `cos nθ` are expanded into polynomials in
+/// `sin θ`, `cos θ`. Beyond it `sin nθ` is an atom of its own: the expansion has degree `n` and
+/// coefficients up to `2^(n−1)`, so it costs work growing with `n` (`sin(1000000 x)` never
+/// finished) and evaluates with a cancellation error near `2^n ε` (a potential `1 − cos 60x`
+/// evaluated to noise). Identities between `sin nθ` and `sin θ` are promised up to this bound.
+pub(crate) const MAX_EXPANDED_MULTIPLE: u64 = 12;
 
 /// `(cos nθ, sin nθ)` from `(cos θ, sin θ)` by binary powering of `cos θ + i sin θ`.
 fn multiple_angle(c: &Rf, s: &Rf, n: i64) -> (Rf, Rf) {

@@ -121,7 +121,8 @@ fn identities() -> Vec<(&'static str, Expr, Expr)> {
         ),
         (
             "offset squared across links",
-            ((a + s("al")).cos() * l + b.cos()).powi(2) + ((a + s("al")).sin() * l + b.sin()).powi(2),
+            ((a + s("al")).cos() * l + b.cos()).powi(2)
+                + ((a + s("al")).sin() * l + b.sin()).powi(2),
             l.powi(2) + 1 + 2 * l * (a + s("al") - b).cos(),
         ),
         ("exp of a sum", (x + 2 * y).exp(), x.exp() * y.exp().powi(2)),
@@ -244,15 +245,24 @@ fn offset_angles_evaluate_to_their_input() {
     for e in cases {
         for _ in 0..20 {
             let values = [
-                (Symbol::new("alpha", SymbolKind::TimeFunction { order: 0 }), next()),
-                (Symbol::new("beta", SymbolKind::TimeFunction { order: 0 }), next()),
+                (
+                    Symbol::new("alpha", SymbolKind::TimeFunction { order: 0 }),
+                    next(),
+                ),
+                (
+                    Symbol::new("beta", SymbolKind::TimeFunction { order: 0 }),
+                    next(),
+                ),
                 (Symbol::new("al", SymbolKind::Constant), next()),
                 (Symbol::new("l", SymbolKind::Constant), next()),
             ];
             let env = |x: Symbol| values.iter().find(|(v, _)| *v == x).map(|(_, v)| *v);
             let want = e.eval(&env).expect("evaluates");
             let got = e.normal().eval(&env).expect("evaluates");
-            assert!((got - want).abs() <= 1e-12 * want.abs().max(1.0), "{e:?}: {got} vs {want}");
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{e:?}: {got} vs {want}"
+            );
         }
     }
 }

@@ -76,9 +76,15 @@ fn a_four_link_chain_with_an_offset_has_the_closed_form_energies() {
         for i in 1..=4 {
             let name = format!("th{i}");
             for order in [0, 1] {
-                values.push((Symbol::new(&name, SymbolKind::TimeFunction { order }), next()));
+                values.push((
+                    Symbol::new(&name, SymbolKind::TimeFunction { order }),
+                    next(),
+                ));
             }
-            values.push((Symbol::new(&format!("l{i}"), SymbolKind::Constant), 1.0 + next()));
+            values.push((
+                Symbol::new(&format!("l{i}"), SymbolKind::Constant),
+                1.0 + next(),
+            ));
         }
         for name in ["m1", "m2", "m3", "al", "g"] {
             values.push((Symbol::new(name, SymbolKind::Constant), 2.0 + next()));
@@ -86,7 +92,10 @@ fn a_four_link_chain_with_an_offset_has_the_closed_form_energies() {
         let env = |s: Symbol| values.iter().find(|(v, _)| *v == s).map(|(_, x)| *x);
         let at = |e: Expr| e.eval(&env).expect("evaluates");
         let (got, want) = (at(eq.kinetic_energy()), at(kinetic));
-        assert!((got - want).abs() <= 1e-12 * want.abs().max(1.0), "{got} vs {want}");
+        assert!(
+            (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+            "{got} vs {want}"
+        );
     }
 }
 

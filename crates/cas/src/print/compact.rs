@@ -125,12 +125,20 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
             let rest = Expr::mul_all(rest);
             // cos^p = cos^r (1 − sin²)^j with p = 2j + r.
             let (j, r) = (power / 2, power % 2);
-            let mut binomial = 1i64;
+            // Exact binomials: C(j, i) outgrows i64 from j = 67 on, and a wrapped coefficient
+            // printed a `cos 150x` potential as 6e45 where its value is 0.47.
+            let mut binomial = Number::ONE;
             for i in 0..=j {
-                let sign = if i % 2 == 0 { 1 } else { -1 };
-                rewritten
-                    .push(Expr::int(sign * binomial) * rest * cos.powi(r) * sin_squared.powi(i));
-                binomial = binomial * (j - i) / (i + 1);
+                let signed = if i % 2 == 0 {
+                    binomial.clone()
+                } else {
+                    binomial.neg()
+                };
+                rewritten.push(Expr::number(signed) * rest * cos.powi(r) * sin_squared.powi(i));
+                binomial = binomial
+                    .mul(&Number::int(j - i))
+                    .div(&Number::int(i + 1))
+                    .unwrap_or(Number::ZERO);
             }
         }
         let sum = Expr::add_all(rewritten);
