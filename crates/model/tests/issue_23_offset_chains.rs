@@ -23,10 +23,10 @@ fn absolute_angles(links: usize) -> (Vec<Expr>, Vec<Expr>) {
     let mut rate = Expr::zero();
     let (mut angles, mut rates) = (Vec::new(), Vec::new());
     for j in 1..=links {
-        angle = angle + Expr::coordinate(&format!("th{j}"));
-        rate = rate + Expr::rate(&format!("th{j}"), 1);
+        angle += Expr::coordinate(&format!("th{j}"));
+        rate += Expr::rate(&format!("th{j}"), 1);
         if j == 3 {
-            angle = angle + al;
+            angle += al;
         }
         angles.push(angle);
         rates.push(rate);
@@ -49,16 +49,15 @@ fn a_four_link_chain_with_an_offset_has_the_closed_form_energies() {
         let m = Expr::symbol(mass);
         for i in 0..k {
             for j in 0..k {
-                kinetic = kinetic
-                    + Expr::rational(1, 2).expect("non-zero")
-                        * m
-                        * l[i]
-                        * l[j]
-                        * phid[i]
-                        * phid[j]
-                        * (phi[i] - phi[j]).cos();
+                kinetic += Expr::rational(1, 2).expect("non-zero")
+                    * m
+                    * l[i]
+                    * l[j]
+                    * phid[i]
+                    * phid[j]
+                    * (phi[i] - phi[j]).cos();
             }
-            potential = potential + m * g * l[i] * phi[i].sin();
+            potential += m * g * l[i] * phi[i].sin();
         }
     }
     assert!(eq.kinetic_energy().equals(kinetic), "T differs");
