@@ -19,6 +19,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::expr::Expr;
+use crate::limits;
 use crate::number::Number;
 
 /// An atom's id. The two high bits tell its kind, so the hot multiplication loop can tell
@@ -442,7 +443,7 @@ impl Poly {
     }
 
     fn mul_with(&self, other: &Poly, rewrite: bool) -> Poly {
-        if self.is_zero() || other.is_zero() {
+        if self.is_zero() || other.is_zero() || limits::exceeded() {
             return Poly::zero();
         }
         if let Some(c) = self.as_constant() {
@@ -457,6 +458,9 @@ impl Poly {
             (other, self)
         };
         if let [(mono, coefficient)] = small.terms.as_slice() {
+            if !limits::terms_ok(large.terms.len()) {
+                return Poly::zero();
+            }
             // Multiplying by one term keeps the lexicographic order of the other's terms, so
             // no hashing or sorting is needed unless a rewriting rule applies.
             let terms: Vec<(Monomial, Number)> = large
@@ -471,6 +475,10 @@ impl Poly {
             {
                 return Poly { terms };
             }
+        }
+        // A product has at most |a| |b| terms; its work is bounded by a multiple of the limit.
+        if !limits::terms_ok(small.terms.len().saturating_mul(large.terms.len()) / 64) {
+            return Poly::zero();
         }
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
         acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
@@ -488,6 +496,9 @@ impl Poly {
                         acc.insert(m, c);
                     }
                 }
+            }
+            if !limits::terms_ok(acc.len()) {
+                return Poly::zero();
             }
         }
         if !rewrite {
@@ -513,11 +524,32 @@ impl Poly {
             }
         }
         terms.extend(rewritten);
+        if !limits::terms_ok(terms.len()) {
+            return Poly::zero();
+        }
         Poly::from_terms(terms)
     }
 
     /// `self^k`.
     pub(crate) fn pow(&self, k: u32) -> Poly {
+        // A single plain term stays one term; anything else (a sum, or a `sin` or root that the
+        // rewriting rules turn into a sum) grows with the degree.
+        let grows = self.terms.len() > 1
+            || self
+                .terms
+                .iter()
+                .any(|(m, _)| m.iter().any(|&(x, _)| needs_rewrite(x, 2)));
+        if grows {
+            let degree = self
+                .terms
+                .iter()
+                .map(|(m, _)| m.iter().map(|&(_, e)| u64::from(e)).sum::<u64>())
+                .max()
+                .unwrap_or(0);
+            if !limits::degree_ok(degree.saturating_mul(u64::from(k))) {
+                return Poly::zero();
+            }
+        }
         let mut result = Poly::one();
         let mut base = self.clone();
         let mut e = k;
