@@ -122,6 +122,11 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
                     _ => rest.push(f),
                 }
             }
+            if power < 2 {
+                // Nothing to rewrite: the term stays as it is (rebuilding it costs a product).
+                rewritten.push(*t);
+                continue;
+            }
             let rest = Expr::mul_all(rest);
             // cos^p = cos^r (1 − sin²)^j with p = 2j + r.
             let (j, r) = (power / 2, power % 2);
