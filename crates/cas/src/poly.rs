@@ -486,15 +486,20 @@ impl Poly {
         // square of a velocity component has many products that share a monomial, and rewriting
         // each product (`sin²θ1 sin²θ2 → (1 − cos²θ1)(1 − cos²θ2)`) before merging multiplied the
         // work by the size of the rewritten form.
-        for (ma, ca) in &small.terms {
-            for (mb, cb) in &large.terms {
-                let m = mul_monomials(ma, mb);
-                let c = ca.mul(cb);
-                match acc.get_mut(&m) {
-                    Some(v) => *v = v.add(&c),
-                    None => {
-                        acc.insert(m, c);
-                    }
+        // A square (`pow` squares its base; kinetic energies square velocity components) needs
+        // each cross product once, doubled.
+        let square = std::ptr::eq(self, other);
+        let two = Number::int(2);
+        for (i, (ma, ca)) in small.terms.iter().enumerate() {
+            if square {
+                accumulate(&mut acc, mul_monomials(ma, ma), ca.mul(ca));
+                let twice = ca.mul(&two);
+                for (mb, cb) in &large.terms[i + 1..] {
+                    accumulate(&mut acc, mul_monomials(ma, mb), twice.mul(cb));
+                }
+            } else {
+                for (mb, cb) in &large.terms {
+                    accumulate(&mut acc, mul_monomials(ma, mb), ca.mul(cb));
                 }
             }
             if !limits::terms_ok(acc.len()) {
@@ -512,12 +517,7 @@ impl Poly {
             }
             if m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
                 for (rm, rc) in rewrite_term(m, c).terms {
-                    match rewritten.get_mut(&rm) {
-                        Some(v) => *v = v.add(&rc),
-                        None => {
-                            rewritten.insert(rm, rc);
-                        }
-                    }
+                    accumulate(&mut rewritten, rm, rc);
                 }
             } else {
                 terms.push((m, c));
@@ -718,6 +718,16 @@ impl Poly {
         match c.recip() {
             Some(r) if !c.is_one() => self.scale(&r),
             _ => self.clone(),
+        }
+    }
+}
+
+/// Adds `c m` to a map of terms.
+fn accumulate(acc: &mut FxHashMap<Monomial, Number>, m: Monomial, c: Number) {
+    match acc.get_mut(&m) {
+        Some(v) => *v = v.add(&c),
+        None => {
+            acc.insert(m, c);
         }
     }
 }
