@@ -11,6 +11,8 @@
 //! Each pass is an identity, so the result has the value of the input (the tests check this by
 //! evaluation). The constructors keep sums inside products, so the regrouping survives as a tree.
 
+use std::sync::{Mutex, OnceLock};
+
 use rustc_hash::FxHashMap;
 
 use crate::expr::{split_coefficient, split_power, Expr, Node};
@@ -20,10 +22,27 @@ use crate::Func;
 use super::order::has_time;
 
 pub(super) fn compact(e: Expr) -> Expr {
-    Compactor {
+    // Reports print each expression in several dialects (Unicode and LaTeX), and the compact form
+    // of a large equation is most of the printing time: it is computed once per process.
+    if let Some(&c) = memo().lock().unwrap_or_else(|p| p.into_inner()).get(&e) {
+        return c;
+    }
+    let c = Compactor {
         memo: FxHashMap::default(),
     }
-    .run(e)
+    .run(e);
+    memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert(e, c);
+    c
+}
+
+/// The compact forms computed so far (expressions are hash-consed and never freed, so this keeps
+/// only two handles per entry).
+fn memo() -> &'static Mutex<FxHashMap<Expr, Expr>> {
+    static MEMO: OnceLock<Mutex<FxHashMap<Expr, Expr>>> = OnceLock::new();
+    MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
 }
 
 struct Compactor {
