@@ -15,7 +15,7 @@
 //! * [`Expr::subs`], [`Expr::eval`], [`Expr::coeff`], [`Expr::collect`],
 //!   [`Expr::common_factor`], [`Expr::expand`]; small exact linear solves with [`Matrix`].
 //! * Printing in three dialects ([`print`](mod@print)) and a parser that reads the text syntax back
-//!   ([`parse()`]).
+//!   ([`parse`](mod@parse)).
 //!
 //! ```
 //! use cas::Expr;
@@ -33,6 +33,7 @@ mod calculus;
 mod eval;
 mod expr;
 mod form;
+mod limits;
 mod matrix;
 mod normal;
 mod number;
@@ -46,6 +47,7 @@ pub use calculus::NotASymbol;
 pub use eval::EvalError;
 pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
 pub use form::NormalForm;
+pub use limits::{set_work_limits, work_limits, WorkLimitError, WorkLimits};
 pub use matrix::{Matrix, SolveError};
 pub use number::Number;
 pub use parse::{parse, ParseContext, ParseError};

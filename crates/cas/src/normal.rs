@@ -2,7 +2,8 @@
 //!
 //! Conversion to the normal form expands products and integer powers, expands `sin`, `cos` and
 //! `tan` of sums and integer multiples into products of `sin`/`cos` of single angles (and
-//! evaluates them exactly at multiples of π/6 and π/4), reduces `sin²` with `sin² + cos² = 1`,
+//! evaluates them exactly at multiples of π/6 and π/4; multiples above `MAX_EXPANDED_MULTIPLE`
+//! are angles of their own), reduces `sin²` with `sin² + cos² = 1`,
 //! reduces powers of roots, splits `exp` of sums, and brings everything over one denominator in
 //! lowest terms (polynomial GCD). The denominator is kept free of `sin` atoms and square roots
 //! (by multiplying with a conjugate), integer-primitive, with a positive leading term in the
@@ -29,6 +30,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::expr::{intern_compound, Compound, Constant, Expr, Func, Node};
+use crate::limits::{self, WorkLimitError};
 use crate::number::Number;
 use crate::poly::{
     self, atom_expr, atom_exprs, atom_index, gcd, plain_atom, root_atom, trig_atoms, AtomId,
@@ -728,13 +730,18 @@ impl Normalizer {
             let sign = if c.is_negative() { -1 } else { 1 };
             return multiple_angle(&Rf::atom(c_id), &Rf::atom(s_id), sign);
         }
-        // c = n/q: the angle unit is m/q, taken `n` times.
-        let (angle_unit, multiple) = if q == 1 {
+        // c = n/q: the angle unit is m/q, taken `n` times. A large multiple stays an angle of its
+        // own (see `MAX_EXPANDED_MULTIPLE`); a negative one keeps the parity rule.
+        let small = c.to_small_ratio().is_some() && n.unsigned_abs() <= MAX_EXPANDED_MULTIPLE;
+        let (angle_unit, multiple) = if !small {
+            (
+                Expr::number(c.abs()) * unit,
+                if c.is_negative() { -1 } else { 1 },
+            )
+        } else if q == 1 {
             (unit, n)
-        } else if c.to_small_ratio().is_some() {
-            (unit * Expr::rational(1, q).unwrap_or_else(Expr::one), n)
         } else {
-            (Expr::number(c.clone()) * unit, 1)
+            (unit * Expr::rational(1, q).unwrap_or_else(Expr::one), n)
         };
         let (s_id, c_id) = trig_atoms(angle_unit);
         let base_cos = Rf::atom(c_id);
@@ -770,6 +777,13 @@ impl Normalizer {
         acc
     }
 }
+
+/// The largest multiple `n` for which `sin nθ` and `cos nθ` are expanded into polynomials in
+/// `sin θ`, `cos θ`. Beyond it `sin nθ` is an atom of its own: the expansion has degree `n` and
+/// coefficients up to `2^(n−1)`, so it costs work growing with `n` (`sin(1000000 x)` never
+/// finished) and evaluates with a cancellation error near `2^n ε` (a potential `1 − cos 60x`
+/// evaluated to noise). Identities between `sin nθ` and `sin θ` are promised up to this bound.
+pub(crate) const MAX_EXPANDED_MULTIPLE: u64 = 12;
 
 /// `(cos nθ, sin nθ)` from `(cos θ, sin θ)` by binary powering of `cos θ + i sin θ`.
 fn multiple_angle(c: &Rf, s: &Rf, n: i64) -> (Rf, Rf) {
@@ -881,9 +895,15 @@ pub(crate) fn cached_rf(e: Expr) -> Option<Arc<Rf>> {
         .cloned()
 }
 
-/// The normal form of `e` as an [`Rf`].
+/// The normal form of `e` as an [`Rf`]; past a work limit, `e` itself as an opaque atom
+/// (equal to its input, not canonical: see [`try_to_rf`]).
 pub(crate) fn to_rf(e: Expr) -> Rf {
-    Normalizer::default().rf(e)
+    try_to_rf(e).unwrap_or_else(|_| Rf::atom(plain_atom(e)))
+}
+
+/// The normal form of `e` as an [`Rf`], or the work limit it ran into.
+pub(crate) fn try_to_rf(e: Expr) -> Result<Rf, WorkLimitError> {
+    limits::guarded(|| Normalizer::default().rf(e))
 }
 
 /// The canonical expression of a normal form, remembered as its own normal form.
@@ -932,25 +952,49 @@ const CACHED_RF_MIN_TERMS: usize = 8;
 impl Expr {
     /// The canonical normal form (see the module documentation of `normal`): equal
     /// expressions of the mechanics class give the identical `Expr`.
+    ///
+    /// Past a work limit ([`crate::WorkLimits`]) the expression is returned as it is: equal to
+    /// its input but not canonical ([`Expr::try_normal`] reports the limit instead).
     pub fn normal(self) -> Expr {
+        // Past a work limit the expression is its own (non-canonical) normal form; that is not
+        // remembered, so raising the limits lets a later call finish.
+        self.try_normal().unwrap_or(self)
+    }
+
+    /// The normal form, or the work limit ([`crate::WorkLimits`]) its expansion ran into.
+    ///
+    /// ```
+    /// use cas::{Expr, WorkLimitError};
+    /// let angle = Expr::add_all((0..21).map(|i| Expr::coordinate(&format!("q{i}"))));
+    /// // 2²¹ products: past the default limit of 500 000 terms.
+    /// assert!(matches!(angle.sin().try_normal(), Err(WorkLimitError::Terms { .. })));
+    /// ```
+    pub fn try_normal(self) -> Result<Expr, WorkLimitError> {
         if let Some(&n) = normal_memo()
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .get(&self)
         {
-            return n;
+            return Ok(n);
         }
-        let n = from_rf(&to_rf(self));
+        let n = from_rf(&try_to_rf(self)?);
         normal_memo()
             .lock()
             .unwrap_or_else(|p| p.into_inner())
             .insert(self, n);
-        n
+        Ok(n)
     }
 
-    /// Whether the expression is identically zero (exact for the mechanics class).
+    /// Whether the expression is identically zero (exact for the mechanics class). Past a work
+    /// limit this is `false` unless the expression is literally zero; [`Expr::try_is_zero`]
+    /// tells the two apart.
     pub fn is_zero(self) -> bool {
         to_rf(self).is_zero()
+    }
+
+    /// Whether the expression is identically zero, or the work limit its expansion ran into.
+    pub fn try_is_zero(self) -> Result<bool, WorkLimitError> {
+        Ok(try_to_rf(self)?.is_zero())
     }
 
     /// Whether two expressions are equal (exact for the mechanics class).

@@ -19,6 +19,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::expr::Expr;
+use crate::limits;
 use crate::number::Number;
 
 /// An atom's id. The two high bits tell its kind, so the hot multiplication loop can tell
@@ -188,6 +189,22 @@ pub(crate) type Monomial = SmallVec<[(AtomId, u32); 8]>;
 #[derive(Clone, Debug, PartialEq, Eq, Hash, Default)]
 pub(crate) struct Poly {
     pub(crate) terms: Vec<(Monomial, Number)>,
+}
+
+/// A monomial ordered by [`cmp_monomial`], as a key of ordered maps.
+#[derive(PartialEq, Eq)]
+struct Ordered(Monomial);
+
+impl PartialOrd for Ordered {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ordered {
+    fn cmp(&self, other: &Self) -> Ordering {
+        cmp_monomial(&self.0, &other.0)
+    }
 }
 
 /// Lexicographic comparison of sparse exponent vectors (the smallest atom id is the most
@@ -426,7 +443,7 @@ impl Poly {
     }
 
     fn mul_with(&self, other: &Poly, rewrite: bool) -> Poly {
-        if self.is_zero() || other.is_zero() {
+        if self.is_zero() || other.is_zero() || limits::exceeded() {
             return Poly::zero();
         }
         if let Some(c) = self.as_constant() {
@@ -441,6 +458,9 @@ impl Poly {
             (other, self)
         };
         if let [(mono, coefficient)] = small.terms.as_slice() {
+            if !limits::terms_ok(large.terms.len()) {
+                return Poly::zero();
+            }
             // Multiplying by one term keeps the lexicographic order of the other's terms, so
             // no hashing or sorting is needed unless a rewriting rule applies.
             let terms: Vec<(Monomial, Number)> = large
@@ -456,34 +476,80 @@ impl Poly {
                 return Poly { terms };
             }
         }
+        // A product has at most |a| |b| terms; its work is bounded by a multiple of the limit.
+        if !limits::terms_ok(small.terms.len().saturating_mul(large.terms.len()) / 64) {
+            return Poly::zero();
+        }
         let mut acc: FxHashMap<Monomial, Number> = FxHashMap::default();
         acc.reserve((small.terms.len() * large.terms.len()).min(1 << 16));
-        let mut extra: Vec<Poly> = Vec::new();
-        for (ma, ca) in &small.terms {
-            for (mb, cb) in &large.terms {
-                let m = mul_monomials(ma, mb);
-                let c = ca.mul(cb);
-                if rewrite && m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
-                    extra.push(rewrite_term(m, c));
-                    continue;
+        // Products are gathered raw first and each distinct monomial is rewritten once: the
+        // square of a velocity component has many products that share a monomial, and rewriting
+        // each product (`sin²θ1 sin²θ2 → (1 − cos²θ1)(1 − cos²θ2)`) before merging multiplied the
+        // work by the size of the rewritten form.
+        // A square (`pow` squares its base; kinetic energies square velocity components) needs
+        // each cross product once, doubled.
+        let square = std::ptr::eq(self, other);
+        let two = Number::int(2);
+        for (i, (ma, ca)) in small.terms.iter().enumerate() {
+            if square {
+                accumulate(&mut acc, mul_monomials(ma, ma), ca.mul(ca));
+                let twice = ca.mul(&two);
+                for (mb, cb) in &large.terms[i + 1..] {
+                    accumulate(&mut acc, mul_monomials(ma, mb), twice.mul(cb));
                 }
-                match acc.get_mut(&m) {
-                    Some(v) => *v = v.add(&c),
-                    None => {
-                        acc.insert(m, c);
-                    }
+            } else {
+                for (mb, cb) in &large.terms {
+                    accumulate(&mut acc, mul_monomials(ma, mb), ca.mul(cb));
                 }
             }
+            if !limits::terms_ok(acc.len()) {
+                return Poly::zero();
+            }
         }
-        let mut p = Poly::from_terms(acc.into_iter().collect());
-        for e in extra {
-            p = p.add(&e);
+        if !rewrite {
+            return Poly::from_terms(acc.into_iter().collect());
         }
-        p
+        let mut terms = Vec::with_capacity(acc.len());
+        let mut rewritten: FxHashMap<Monomial, Number> = FxHashMap::default();
+        for (m, c) in acc {
+            if c.is_exact_zero() {
+                continue;
+            }
+            if m.iter().any(|&(x, e)| needs_rewrite(x, e)) {
+                for (rm, rc) in rewrite_term(m, c).terms {
+                    accumulate(&mut rewritten, rm, rc);
+                }
+            } else {
+                terms.push((m, c));
+            }
+        }
+        terms.extend(rewritten);
+        if !limits::terms_ok(terms.len()) {
+            return Poly::zero();
+        }
+        Poly::from_terms(terms)
     }
 
     /// `self^k`.
     pub(crate) fn pow(&self, k: u32) -> Poly {
+        // A single plain term stays one term; anything else (a sum, or a `sin` or root that the
+        // rewriting rules turn into a sum) grows with the degree.
+        let grows = self.terms.len() > 1
+            || self
+                .terms
+                .iter()
+                .any(|(m, _)| m.iter().any(|&(x, _)| needs_rewrite(x, 2)));
+        if grows {
+            let degree = self
+                .terms
+                .iter()
+                .map(|(m, _)| m.iter().map(|&(_, e)| u64::from(e)).sum::<u64>())
+                .max()
+                .unwrap_or(0);
+            if !limits::degree_ok(degree.saturating_mul(u64::from(k))) {
+                return Poly::zero();
+            }
+        }
         let mut result = Poly::one();
         let mut base = self.clone();
         let mut e = k;
@@ -575,19 +641,37 @@ impl Poly {
         }
         let (lead_m, lead_c) = divisor.terms.first()?;
         let lead_inv = lead_c.recip()?;
-        let mut rem = self.clone();
+        // The remainder in an ordered map: each quotient term updates only the terms it touches
+        // (subtracting from the whole remainder at each step made a division quadratic in the
+        // size of the dividend).
+        let mut rem: std::collections::BTreeMap<Ordered, Number> = self
+            .terms
+            .iter()
+            .map(|(m, c)| (Ordered(m.clone()), c.clone()))
+            .collect();
         let mut quotient: Vec<(Monomial, Number)> = Vec::new();
-        let mut guard = 0usize;
-        while let Some((m, c)) = rem.terms.first().cloned() {
+        while let Some((Ordered(m), c)) = rem.pop_last() {
             let qm = div_monomials(&m, lead_m)?;
             let qc = c.mul(&lead_inv);
-            let term = Poly {
-                terms: vec![(qm.clone(), qc.clone())],
-            };
-            rem = rem.sub(&divisor.mul_raw(&term));
+            for (dm, dc) in &divisor.terms[1..] {
+                let key = Ordered(mul_monomials(dm, &qm));
+                let delta = dc.mul(&qc).neg();
+                match rem.entry(key) {
+                    std::collections::btree_map::Entry::Occupied(mut o) => {
+                        let v = o.get().add(&delta);
+                        if v.is_exact_zero() {
+                            o.remove();
+                        } else {
+                            *o.get_mut() = v;
+                        }
+                    }
+                    std::collections::btree_map::Entry::Vacant(v) => {
+                        v.insert(delta);
+                    }
+                }
+            }
             quotient.push((qm, qc));
-            guard += 1;
-            if guard > 1_000_000 {
+            if quotient.len() > 1_000_000 {
                 return None;
             }
         }
@@ -634,6 +718,16 @@ impl Poly {
         match c.recip() {
             Some(r) if !c.is_one() => self.scale(&r),
             _ => self.clone(),
+        }
+    }
+}
+
+/// Adds `c m` to a map of terms.
+fn accumulate(acc: &mut FxHashMap<Monomial, Number>, m: Monomial, c: Number) {
+    match acc.get_mut(&m) {
+        Some(v) => *v = v.add(&c),
+        None => {
+            acc.insert(m, c);
         }
     }
 }

@@ -98,6 +98,33 @@ fn identities() -> Vec<(&'static str, Expr, Expr)> {
             (2 + (y - Expr::pi() / 2).cos().powi(2)).sqrt().powi(2),
             3 - y.cos().powi(2),
         ),
+        (
+            "offset pythagoras",
+            (a + s("al")).sin().powi(2) + (a + s("al")).cos().powi(2),
+            Expr::one(),
+        ),
+        (
+            "offsets cancel in a difference of angles",
+            (a + s("al")).cos() * (b + s("al")).cos() + (a + s("al")).sin() * (b + s("al")).sin(),
+            (a - b).cos(),
+        ),
+        (
+            "offset over a sum of coordinates",
+            (a + b + s("al") - s("be")).sin(),
+            (a + s("al")).sin() * (b - s("be")).cos() + (a + s("al")).cos() * (b - s("be")).sin(),
+        ),
+        (
+            "rational offset",
+            (a + Expr::rational(139, 100).unwrap()).sin() * a.cos()
+                - (a + Expr::rational(139, 100).unwrap()).cos() * a.sin(),
+            Expr::rational(139, 100).unwrap().sin(),
+        ),
+        (
+            "offset squared across links",
+            ((a + s("al")).cos() * l + b.cos()).powi(2)
+                + ((a + s("al")).sin() * l + b.sin()).powi(2),
+            l.powi(2) + 1 + 2 * l * (a + s("al") - b).cos(),
+        ),
         ("exp of a sum", (x + 2 * y).exp(), x.exp() * y.exp().powi(2)),
         ("log of exp", x.exp().ln(), x),
         (
@@ -193,4 +220,49 @@ fn a_function_whose_argument_normalises_to_a_literal_is_that_number() {
     assert!(Expr::zero().is_zero());
     let abs_zero = ((x + 1).powi(2) - x.powi(2) - 2 * x - 1).abs();
     assert!(abs_zero.is_zero());
+}
+
+#[test]
+fn offset_angles_evaluate_to_their_input() {
+    // Normal forms of expressions with constant offsets, evaluated at random points, against
+    // the input evaluated directly.
+    use cas::{Symbol, SymbolKind};
+    let (a, b) = (q("alpha"), q("beta"));
+    let (al, l) = (s("al"), s("l"));
+    let offset = Expr::rational(139, 100).unwrap();
+    let cases = [
+        (a + al).sin() * (b - al + offset).cos(),
+        ((a + al).cos() * l + (a + b + offset).cos()).powi(3),
+        (a + b + al + offset).sin().powi(2) / (2 + (a - al).cos()),
+    ];
+    let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+    };
+    for e in cases {
+        for _ in 0..20 {
+            let values = [
+                (
+                    Symbol::new("alpha", SymbolKind::TimeFunction { order: 0 }),
+                    next(),
+                ),
+                (
+                    Symbol::new("beta", SymbolKind::TimeFunction { order: 0 }),
+                    next(),
+                ),
+                (Symbol::new("al", SymbolKind::Constant), next()),
+                (Symbol::new("l", SymbolKind::Constant), next()),
+            ];
+            let env = |x: Symbol| values.iter().find(|(v, _)| *v == x).map(|(_, v)| *v);
+            let want = e.eval(&env).expect("evaluates");
+            let got = e.normal().eval(&env).expect("evaluates");
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                "{e:?}: {got} vs {want}"
+            );
+        }
+    }
 }

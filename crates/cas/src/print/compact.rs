@@ -11,6 +11,8 @@
 //! Each pass is an identity, so the result has the value of the input (the tests check this by
 //! evaluation). The constructors keep sums inside products, so the regrouping survives as a tree.
 
+use std::sync::{Mutex, OnceLock};
+
 use rustc_hash::FxHashMap;
 
 use crate::expr::{split_coefficient, split_power, Expr, Node};
@@ -20,10 +22,27 @@ use crate::Func;
 use super::order::has_time;
 
 pub(super) fn compact(e: Expr) -> Expr {
-    Compactor {
+    // Reports print each expression in several dialects (Unicode and LaTeX), and the compact form
+    // of a large equation is most of the printing time: it is computed once per process.
+    if let Some(&c) = memo().lock().unwrap_or_else(|p| p.into_inner()).get(&e) {
+        return c;
+    }
+    let c = Compactor {
         memo: FxHashMap::default(),
     }
-    .run(e)
+    .run(e);
+    memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert(e, c);
+    c
+}
+
+/// The compact forms computed so far (expressions are hash-consed and never freed, so this keeps
+/// only two handles per entry).
+fn memo() -> &'static Mutex<FxHashMap<Expr, Expr>> {
+    static MEMO: OnceLock<Mutex<FxHashMap<Expr, Expr>>> = OnceLock::new();
+    MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
 }
 
 struct Compactor {
@@ -122,15 +141,28 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
                     _ => rest.push(f),
                 }
             }
+            if power < 2 {
+                // Nothing to rewrite: the term stays as it is (rebuilding it costs a product).
+                rewritten.push(*t);
+                continue;
+            }
             let rest = Expr::mul_all(rest);
             // cos^p = cos^r (1 − sin²)^j with p = 2j + r.
             let (j, r) = (power / 2, power % 2);
-            let mut binomial = 1i64;
+            // Exact binomials: C(j, i) outgrows i64 from j = 67 on, and a wrapped coefficient
+            // printed a `cos 150x` potential as 6e45 where its value is 0.47.
+            let mut binomial = Number::ONE;
             for i in 0..=j {
-                let sign = if i % 2 == 0 { 1 } else { -1 };
-                rewritten
-                    .push(Expr::int(sign * binomial) * rest * cos.powi(r) * sin_squared.powi(i));
-                binomial = binomial * (j - i) / (i + 1);
+                let signed = if i % 2 == 0 {
+                    binomial.clone()
+                } else {
+                    binomial.neg()
+                };
+                rewritten.push(Expr::number(signed) * rest * cos.powi(r) * sin_squared.powi(i));
+                binomial = binomial
+                    .mul(&Number::int(j - i))
+                    .div(&Number::int(i + 1))
+                    .unwrap_or(Number::ZERO);
             }
         }
         let sum = Expr::add_all(rewritten);
