@@ -28,6 +28,15 @@ pub enum SolveError {
         /// The column (0-based) that has no pivot.
         column: usize,
     },
+    /// An intermediate entry of the elimination grew past the term budget: the solution in
+    /// closed form would be too large to be of use.
+    #[error("the solution in closed form is too large: an intermediate entry has {terms} terms (budget {budget})")]
+    TooLarge {
+        /// Terms of the entry that went over.
+        terms: usize,
+        /// The budget.
+        budget: usize,
+    },
     /// The shapes do not fit.
     #[error("shape mismatch: a {rows}×{cols} matrix with a right-hand side of {rhs_rows} rows")]
     Shape {
@@ -130,6 +139,16 @@ impl Matrix {
 
     /// Solves `self · X = rhs` exactly. `self` must be square.
     pub fn solve(&self, rhs: &Matrix) -> Result<Matrix, SolveError> {
+        self.solve_within(rhs, usize::MAX)
+    }
+
+    /// [`Matrix::solve`], giving up with [`SolveError::TooLarge`] as soon as an intermediate
+    /// entry (numerator and denominator) has more than `budget` terms: elimination over
+    /// rational functions can grow without bound, and past a size the closed form is of no use.
+    ///
+    /// # Errors
+    /// As [`Matrix::solve`], or [`SolveError::TooLarge`].
+    pub fn solve_within(&self, rhs: &Matrix, budget: usize) -> Result<Matrix, SolveError> {
         let n = self.rows;
         if self.cols != n || rhs.rows != n {
             return Err(SolveError::Shape {
@@ -167,6 +186,10 @@ impl Matrix {
                 let factor = row[col].clone();
                 for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
                     *x = x.sub(&p.mul(&factor));
+                    let terms = x.num.terms.len() + x.den.terms.len();
+                    if terms > budget {
+                        return Err(SolveError::TooLarge { terms, budget });
+                    }
                 }
             }
         }

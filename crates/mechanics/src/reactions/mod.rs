@@ -49,6 +49,13 @@ pub enum ReactionError {
     /// The accelerations (and multipliers) cannot be solved for.
     #[error("the equations of motion cannot be solved for the accelerations")]
     Unsolvable,
+    /// The multipliers in closed form would be too large to be of use (the symbolic solve of
+    /// `M q̈ + Aᵀλ = f, A q̈ = b` outgrew its budget).
+    #[error("the reactions are too large to write in closed form (the symbolic solve for the multipliers went past {budget} terms in an entry)")]
+    TooLarge {
+        /// The term budget of an entry.
+        budget: usize,
+    },
     /// Another constraint moves with the released bodies; its multiplier would mix in.
     #[error("reaction `{reaction}`: constraint `{other}` involves the released bodies too; release it as well or ask for a combined reaction")]
     Entangled {

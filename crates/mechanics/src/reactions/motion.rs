@@ -1,12 +1,17 @@
 //! The motion of the constrained system (accelerations and multipliers as functions of the
 //! state) and the residuals of a released system's Lagrange equations on it.
 
-use cas::{Expr, Matrix, Symbol};
+use cas::{Expr, Matrix, SolveError, Symbol};
 
 use super::compare::sample;
 use super::ReactionError;
 use crate::equations::{derive_with, Equations};
 use crate::system::{System, Vector};
+
+/// Terms an entry of the multiplier solve may reach: a course's systems stay far below (tens
+/// to hundreds), while the four-bar's 5×5 solve grows past it quickly instead of running for
+/// minutes.
+const SOLVE_BUDGET: usize = 2_000;
 
 /// The motion of the constrained system: how to replace every coordinate (eliminated ones by
 /// their value), and accelerations and multipliers as functions of the state.
@@ -45,8 +50,11 @@ impl Motion {
                 }
                 let matrix = Matrix::from_rows(rows).ok_or(ReactionError::Unsolvable)?;
                 let x = matrix
-                    .solve(&Matrix::column(rhs))
-                    .map_err(|_| ReactionError::Unsolvable)?;
+                    .solve_within(&Matrix::column(rhs), SOLVE_BUDGET)
+                    .map_err(|e| match e {
+                        SolveError::TooLarge { budget, .. } => ReactionError::TooLarge { budget },
+                        _ => ReactionError::Unsolvable,
+                    })?;
                 let value = |i| {
                     x.get(i, 0)
                         .map(Expr::normal)
