@@ -47,6 +47,6 @@ pub use eval::EvalError;
 pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
 pub use form::NormalForm;
 pub use matrix::{Matrix, SolveError};
-pub use number::Number;
+pub use number::{LiteralError, Number, MAX_LITERAL_EXPONENT};
 pub use parse::{parse, ParseContext, ParseError};
 pub use solve::{solve_for, Condition, Solution, Solved};

@@ -130,6 +130,13 @@ pub enum DiagnosticKind {
         /// The literal.
         text: String,
     },
+    /// A non-zero number literal too small for a double-precision value (it would read as a
+    /// subnormal number or as 0).
+    #[error("number `{text}` is too small for numeric work")]
+    NumberUnderflow {
+        /// The literal.
+        text: String,
+    },
     /// A clause given twice in one statement (`mass` twice in a `body`, say).
     #[error("`{clause}` is given twice")]
     DuplicateClause {
@@ -411,6 +418,13 @@ pub enum DiagnosticKind {
         /// Parameter or input.
         kind: NameKind,
     },
+    /// A constant value that numeric work cannot use: it divides by zero, overflows or
+    /// underflows double precision, or is not a real number.
+    #[error("this value {reason}")]
+    UnusableValue {
+        /// What is wrong with it ("divides by zero", …).
+        reason: &'static str,
+    },
     /// `simulate` needs an end time.
     #[error("the simulation has no end time")]
     MissingEndTime,
@@ -428,6 +442,7 @@ impl DiagnosticKind {
             UnknownStatement { .. } => "not a statement keyword".to_string(),
             TooDeep { .. } => "nested too deeply".to_string(),
             NumberOutOfRange { .. } => "too large".to_string(),
+            NumberUnderflow { .. } => "too small".to_string(),
             DuplicateClause { .. } => "given again here".to_string(),
             UnknownOption { .. } => "not an option here".to_string(),
             UnknownName { .. } => "not declared".to_string(),
@@ -458,6 +473,7 @@ impl DiagnosticKind {
             NonPositiveMass { value } | NegativeMoment { value } => format!("= {value}"),
             UnusedCoordinate { .. } | UnusedParameter { .. } => "declared here".to_string(),
             MissingValue { .. } => "no value".to_string(),
+            UnusableValue { reason } => (*reason).to_string(),
             _ => return None,
         })
     }
@@ -473,6 +489,7 @@ impl DiagnosticKind {
             UnclosedParenthesis => "E004",
             TooDeep { .. } => "E005",
             NumberOutOfRange { .. } => "E006",
+            NumberUnderflow { .. } => "E009",
             DuplicateClause { .. } => "E007",
             UnknownOption { .. } => "E008",
             UnknownName { .. } => "E101",
@@ -512,6 +529,7 @@ impl DiagnosticKind {
             UnusedParameter { .. } => "W002",
             MissingValue { .. } => "E401",
             MissingEndTime => "E402",
+            UnusableValue { .. } => "E403",
         }
     }
 }

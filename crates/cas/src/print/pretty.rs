@@ -101,6 +101,9 @@ impl Pretty {
             let (s, _) = self.number(&n.neg());
             return (format!("{}{s}", self.minus()), Prec::Product);
         }
+        if let Some((digits, exponent)) = n.to_decimal() {
+            return self.decimal(&digits.to_string(), exponent);
+        }
         match n {
             Number::Float(_) => (n.to_string(), Prec::Atom),
             _ if n.is_integer() => (n.to_string(), Prec::Atom),
@@ -109,6 +112,35 @@ impl Pretty {
                 Prec::Atom,
             ),
             _ => (format!("{}/{}", n.numer(), n.denom()), Prec::Product),
+        }
+    }
+
+    /// `digits × 10^exponent` (`exponent < 0`) as people write it: `9.81`, `0.001`, and in
+    /// scientific notation once more than a few zeros would follow the point (`1.5e-300`,
+    /// which the parser reads back exactly).
+    fn decimal(&self, digits: &str, exponent: i64) -> (String, Prec) {
+        let len = i64::try_from(digits.len()).unwrap_or(i64::MAX);
+        let leading_zeros = -exponent - len;
+        if leading_zeros < 0 {
+            let point = digits.len() - exponent.unsigned_abs() as usize;
+            return (
+                format!("{}.{}", &digits[..point], &digits[point..]),
+                Prec::Atom,
+            );
+        }
+        if leading_zeros <= 4 {
+            let zeros = "0".repeat(leading_zeros as usize);
+            return (format!("0.{zeros}{digits}"), Prec::Atom);
+        }
+        let mantissa = match digits.len() {
+            1 => digits.to_owned(),
+            _ => format!("{}.{}", &digits[..1], &digits[1..]),
+        };
+        let power = exponent + len - 1;
+        if self.latex() {
+            (format!(r"{mantissa} \cdot 10^{{{power}}}"), Prec::Product)
+        } else {
+            (format!("{mantissa}e{power}"), Prec::Atom)
         }
     }
 
@@ -147,8 +179,10 @@ impl Pretty {
         }
         let mut factors = factors.to_vec();
         factors.sort_by(|a, b| cmp_factors(*a, *b));
+        // A float or a decimal (`0.49 m`) is written whole in front, not as a fraction.
         let (p, q) = match coefficient {
             Number::Float(_) => (coefficient.clone(), Number::ONE),
+            _ if coefficient.to_decimal().is_some() => (coefficient.clone(), Number::ONE),
             _ => (coefficient.numer(), coefficient.denom()),
         };
         let mut num: Vec<String> = Vec::new();

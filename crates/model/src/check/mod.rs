@@ -518,10 +518,10 @@ impl Checker {
     fn mass(&mut self, mass: &ast::Expr) -> Option<Expr> {
         let mass = self.expr(mass, Type::Scalar, Place::constant("a mass"))?;
         match self.model.evaluate_constant(&mass) {
-            Some(value) if value.is_nan() || value <= 0.0 => {
+            Some(value) if value.is_nan() || value <= 0.0 || !value.is_normal() => {
                 self.diagnostics.push(
                     Diagnostic::new(DiagnosticKind::NonPositiveMass { value }, mass.span)
-                        .with_help("Give a positive mass; a massless point needs no `particle`."),
+                        .with_help("Give a positive mass (at least 2.2e-308; use other units for smaller ones); a massless point needs no `particle`."),
                 );
                 None
             }
@@ -1259,6 +1259,15 @@ impl Checker {
     fn finish(&mut self) {
         if !self.diagnostics.iter().any(Diagnostic::is_error) {
             self.unused();
+            // Values the file gives that numeric work could not use (`1/0`, an overflowing
+            // product) are errors at their place now, not NaNs far downstream. Masses were
+            // checked where they were declared.
+            let values = self.model.value_diagnostics();
+            self.diagnostics.extend(
+                values
+                    .into_iter()
+                    .filter(|d| matches!(d.kind, DiagnosticKind::UnusableValue { .. })),
+            );
         }
         let free = self.model.free_coordinates().count();
         if free == 0 && !self.diagnostics.iter().any(Diagnostic::is_error) {
