@@ -337,6 +337,23 @@ mod tests {
         assert_eq!(round_trip(e), Expr::rational(5, 2).unwrap() * x);
     }
 
+    /// Issue 23: a power tower `x^x^…^x` 65 deep hung `simplify` and `diff`: the Unicode
+    /// printer printed each exponent twice, 2^65 times in all. Printed once, the tower and its
+    /// derivative print in time linear in their (quadratic) size.
+    #[test]
+    fn a_deep_power_tower_prints_quickly() {
+        let text = vec!["x"; 65].join("^");
+        let e = parse(&text, &ParseContext::new()).unwrap();
+        assert_eq!(to_unicode(e).matches('x').count(), 65);
+        assert_eq!(to_latex(e).matches('x').count(), 65);
+        let d = e.diff(s("x").as_symbol().unwrap());
+        let printed = to_unicode(d);
+        assert!(printed.contains("ln x"), "{}", &printed[..200]);
+        // The derivative at x = 1 is 1 (every level of the tower is 1 there, and only the
+        // outermost power contributes).
+        assert!((d.eval(&|_| Some(1.0)).unwrap() - 1.0).abs() < 1e-12);
+    }
+
     /// Issue 23: decimals print as decimals for people, far ones in scientific notation, and
     /// every printed form reads back to the same exact value.
     #[test]

@@ -281,11 +281,13 @@ impl Pretty {
             return self.power_number(base, n);
         }
         let b = self.base(base);
-        let x = self.expr(exp).0;
+        // The exponent is printed once: printing it twice per level made a tower `x^x^…^x`
+        // cost 2^depth (issue 23).
+        let (x, precedence) = self.expr(exp);
         if self.latex() {
             (format!("{b}^{{{x}}}"), Prec::Power)
         } else {
-            let x = self.wrap((x, self.expr(exp).1), Prec::Atom);
+            let x = self.wrap((x, precedence), Prec::Atom);
             (format!("{b}^{x}"), Prec::Power)
         }
     }
