@@ -408,6 +408,14 @@ pub enum DiagnosticKind {
         /// The parameter.
         name: String,
     },
+    /// Several parameters that no expression uses, in one warning.
+    #[error("{} parameters are never used: {}{}", .names.len() + .more, list_names(.names), if *.more > 0 { format!(" and {} more", .more) } else { String::new() })]
+    UnusedParameters {
+        /// The first few of them.
+        names: Vec<String>,
+        /// How many more there are.
+        more: usize,
+    },
 
     // --- values (from `Model::require_values`) ----------------------------------------------
     /// A parameter or input without a numeric value, when numbers are needed.
@@ -471,7 +479,9 @@ impl DiagnosticKind {
             DuplicateInitial { .. } => "given again here".to_string(),
             ConstraintWithoutCoordinates => "no coordinate here".to_string(),
             NonPositiveMass { value } | NegativeMoment { value } => format!("= {value}"),
-            UnusedCoordinate { .. } | UnusedParameter { .. } => "declared here".to_string(),
+            UnusedCoordinate { .. } | UnusedParameter { .. } | UnusedParameters { .. } => {
+                "declared here".to_string()
+            }
             MissingValue { .. } => "no value".to_string(),
             UnusableValue { reason } => (*reason).to_string(),
             _ => return None,
@@ -526,12 +536,20 @@ impl DiagnosticKind {
             NonPositiveMass { .. } => "E311",
             NegativeMoment { .. } => "E312",
             UnusedCoordinate { .. } => "W001",
-            UnusedParameter { .. } => "W002",
+            UnusedParameter { .. } | UnusedParameters { .. } => "W002",
             MissingValue { .. } => "E401",
             MissingEndTime => "E402",
             UnusableValue { .. } => "E403",
         }
     }
+}
+
+fn list_names(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A secondary place shown with a diagnostic, with a short note.
