@@ -18,7 +18,8 @@
 //! atom    = number | name | name "(" sum ("," sum)* ")" | "(" sum ")"
 //! ```
 //!
-//! Names resolve as follows: a name listed in the context is a coordinate `q(t)`; `NAME_d`,
+//! Names resolve as follows: a name listed in the context, or whose rate the text uses
+//! (`x` in `sin(x)*x_d`), is a coordinate `q(t)`; `NAME_d`,
 //! `NAME_dd`, … are the rates of `NAME` (always: the suffix says it is a function of time); `t`
 //! is time, `pi` is π, `E` is Euler's number, `oo` and `nan` are the floats SymPy names so;
 //! anything else is a constant symbol. Implicit
@@ -52,6 +53,7 @@ const MAX_POWER_BITS: u64 = 1 << 20;
 /// ```
 pub fn parse(text: &str, ctx: &ParseContext) -> Result<Expr, ParseError> {
     let tokens = lex(text)?;
+    let ctx = &with_rated_names(text, &tokens, ctx);
     let mut p = Parser {
         src: text,
         tokens,
@@ -69,6 +71,22 @@ pub fn parse(text: &str, ctx: &ParseContext) -> Result<Expr, ParseError> {
         Tok::RParen => Err(p.error(ParseErrorKind::UnmatchedClose, t.span)),
         _ => Err(p.unexpected_after_operand(&t)),
     }
+}
+
+/// `ctx` with every name whose rate the text uses (`x_d`, `θ̇`) declared a function of time:
+/// `sin(x)*x_d` means the coordinate `x` and its rate, so that `d/dt` gives `cos x ẋ²`
+/// (issue 14), rather than a constant `x` beside a rate of another `x`.
+fn with_rated_names(text: &str, tokens: &[Token], ctx: &ParseContext) -> ParseContext {
+    let mut out = ctx.clone();
+    for t in tokens.iter().filter(|t| t.tok == Tok::Name) {
+        let (name, marks) = from_unicode_name(&text[t.span.clone()]);
+        if marks > 0 {
+            out.time_functions.insert(name);
+        } else if let Some((base, _)) = split_rate_suffix(&name) {
+            out.time_functions.insert(base.to_owned());
+        }
+    }
+    out
 }
 
 /// Which names denote functions of time; everything else the parser resolves by itself.
@@ -1085,6 +1103,25 @@ mod tests {
         assert_eq!(
             err(&"-".repeat(1000)).kind(),
             &ParseErrorKind::TooDeep(MAX_DEPTH)
+        );
+    }
+
+    /// Issue 14: `sin(x)*x_d` read `x` as a constant, so its time derivative lost `cos x ẋ²`.
+    #[test]
+    fn a_name_with_a_rate_in_the_text_is_a_coordinate() {
+        let e = parse("sin(x)*x_d", &ParseContext::new()).unwrap();
+        let x = Expr::coordinate("x");
+        assert_eq!(e, x.sin() * Expr::rate("x", 1));
+        let expected = x.cos() * Expr::rate("x", 1).powi(2) + x.sin() * Expr::rate("x", 2);
+        assert!(e.dt().equals(expected));
+        assert_eq!(
+            parse("ẋ + x", &ParseContext::new()).unwrap(),
+            Expr::rate("x", 1) + x
+        );
+        // Without a rate, a name stays a constant.
+        assert_eq!(
+            parse("sin(y)", &ParseContext::new()).unwrap(),
+            Expr::symbol("y").sin()
         );
     }
 

@@ -267,7 +267,7 @@ fn evaluate(
             row.iter()
                 .map(|e| match e.eval(&env) {
                     Ok(v) if v.is_finite() => Ok(v),
-                    Ok(v) => Err(LinearizeError::Evaluation(format!("{e:?} = {v}"))),
+                    Ok(v) => Err(LinearizeError::Evaluation(format!("{e} = {v}"))),
                     Err(err) => Err(LinearizeError::Evaluation(err.to_string())),
                 })
                 .collect()

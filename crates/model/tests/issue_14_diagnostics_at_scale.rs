@@ -80,3 +80,19 @@ fn many_parameters_on_their_own_lines_check_without_a_warning_each() {
         "{text}"
     );
 }
+
+/// Issue 14: a missing inertial frame suggested `frame N = N rotated …`, which refers to
+/// itself; the help now gives a definition that works.
+#[test]
+fn a_missing_frame_gets_a_definition_that_works() {
+    let help = |source: &str| {
+        model::load(source).expect_err("an error").0[0]
+            .help
+            .clone()
+            .unwrap_or_default()
+    };
+    let none = help("coordinates th\nparameters m = 1\nframe B = N rotated th about z\npoint P = B.x\nparticle P mass m\n");
+    assert!(none.contains("`frame N` (the first frame"), "{none}");
+    let one = help("coordinates th\nparameters m = 1\nframe A\nframe B = N rotated th about z\npoint P = B.x\nparticle P mass m\n");
+    assert!(one.contains("`frame N = A rotated … about z`"), "{one}");
+}
