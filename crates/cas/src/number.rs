@@ -282,6 +282,22 @@ impl Number {
     /// (`7/10` is `(7, −1)`, `49/200` is `(245, −3)`, `1/25` is `(4, −2)`). `None` for integers,
     /// for `1/2`, `3/8`, `2/5`, `1/3` (which read better as fractions) and for floats.
     pub fn to_decimal(&self) -> Option<(BigInt, i64)> {
+        let (digits, exponent, twos, fives) = self.terminating_decimal()?;
+        // Powers of 2 (`1/2`, `3/8`) and small ones of 5 (`2/5`) read better as fractions;
+        // `0.7`, `0.245`, `123.456` (= 15432/125) as decimals.
+        (fives > 0 && (twos > 0 || fives >= 2)).then_some((digits, exponent))
+    }
+
+    /// The value as a decimal `digits × 10^exponent` when it is a non-integer exact rational
+    /// whose denominator has no prime factor but 2 and 5 (`1/2` is `(5, −1)`): how a number
+    /// standing alone, such as a parameter's value, reads best. `None` otherwise.
+    pub fn to_terminating_decimal(&self) -> Option<(BigInt, i64)> {
+        self.terminating_decimal()
+            .map(|(digits, exponent, _, _)| (digits, exponent))
+    }
+
+    /// `(digits, exponent, a, b)` for a denominator `2^a 5^b > 1`.
+    fn terminating_decimal(&self) -> Option<(BigInt, i64, u64, u64)> {
         let (num, den) = self.to_big_ratio()?;
         let two = BigInt::from(2);
         let five = BigInt::from(5);
@@ -295,16 +311,14 @@ impl Number {
             rest /= &five;
             fives += 1;
         }
-        // Powers of 2 (`1/2`, `3/8`) and small ones of 5 (`2/5`) read better as fractions;
-        // `0.7`, `0.245`, `123.456` (= 15432/125) as decimals.
-        if !rest.is_one() || fives == 0 || (twos == 0 && fives < 2) {
+        if !rest.is_one() || twos + fives == 0 {
             return None;
         }
         // num/(2^a 5^b) = num 2^(k−a) 5^(k−b) / 10^k with k = max(a, b).
         let k = twos.max(fives);
         let scale =
             num_traits::pow(two, (k - twos) as usize) * num_traits::pow(five, (k - fives) as usize);
-        Some((num * scale, -i64::try_from(k).ok()?))
+        Some((num * scale, -i64::try_from(k).ok()?, twos, fives))
     }
 
     /// The sign: -1, 0 or 1.
@@ -701,6 +715,11 @@ mod tests {
         assert_eq!(dec(1, 30), None);
         assert_eq!(dec(3, 1), None);
         assert_eq!(Number::Float(0.5).to_decimal(), None);
+        let alone = |n: i64, d: i64| Number::rational(n, d).unwrap().to_terminating_decimal();
+        assert_eq!(alone(1, 2), d(5, -1));
+        assert_eq!(alone(3, 5), d(6, -1));
+        assert_eq!(alone(1, 3), None);
+        assert_eq!(alone(4, 1), None);
     }
 
     #[test]

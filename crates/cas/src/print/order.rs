@@ -89,12 +89,7 @@ impl TermInfo {
         };
         let mut best: Option<(u8, &'static str)> = None;
         let mut stack = vec![t];
-        // Shared nodes count once (a tree walk of a DAG can be exponential).
-        let mut seen = FxHashSet::default();
         while let Some(e) = stack.pop() {
-            if !seen.insert(e) {
-                continue;
-            }
             match e.node() {
                 Node::Symbol(s) => match s.kind() {
                     SymbolKind::TimeFunction { order } => {

@@ -70,7 +70,7 @@ impl Pretty {
 
     fn expr(&self, e: Expr) -> (String, Prec) {
         match e.node() {
-            Node::Number(n) => self.number(n),
+            Node::Number(n) => self.lone_number(n),
             Node::Symbol(s) => {
                 let text = if self.latex() {
                     names::latex(*s)
@@ -93,6 +93,23 @@ impl Pretty {
                 _ => self.power(*b, *x),
             },
             Node::Func(f, args) => self.func(*f, args, None),
+        }
+    }
+
+    /// A number standing alone (a parameter's value, say) reads as the decimal it was
+    /// probably written as whenever it is one (`0.5`, `0.4`); as a coefficient, `1/2` and `2/5`
+    /// stay fractions (`½ m v²`), see [`Pretty::number`].
+    fn lone_number(&self, n: &Number) -> (String, Prec) {
+        match n.abs().to_terminating_decimal() {
+            Some((digits, exponent)) if digits.to_string().len() <= 12 => {
+                let (s, p) = self.decimal(&digits.to_string(), exponent);
+                if n.is_negative() {
+                    (format!("{}{s}", self.minus()), Prec::Product)
+                } else {
+                    (s, p)
+                }
+            }
+            _ => self.number(n),
         }
     }
 
