@@ -14,8 +14,8 @@
 //!   `q → q̇ → q̈`), [`Expr::taylor`] (series to any order at a point).
 //! * [`Expr::subs`], [`Expr::eval`], [`Expr::coeff`], [`Expr::collect`],
 //!   [`Expr::common_factor`], [`Expr::expand`]; small exact linear solves with [`Matrix`].
-//! * Printing in three dialects ([`print`]) and a parser that reads the text syntax back
-//!   ([`parse`]).
+//! * Printing in three dialects ([`print`](mod@print)) and a parser that reads the text syntax back
+//!   ([`parse`](mod@parse)).
 //!
 //! ```
 //! use cas::Expr;
