@@ -354,6 +354,20 @@ mod tests {
         assert!((d.eval(&|_| Some(1.0)).unwrap() - 1.0).abs() < 1e-12);
     }
 
+    /// A continued fraction 40 deep: the LaTeX printer drew a lone denominator twice per
+    /// level (2^40 in all); each shared node is now drawn once.
+    #[test]
+    fn a_deep_continued_fraction_prints_quickly() {
+        let x = s("x");
+        let mut e = x;
+        for _ in 0..40 {
+            e = x / (Expr::one() + e);
+        }
+        let latex = to_latex(e);
+        assert_eq!(latex.matches(r"\frac").count(), 40, "{latex}");
+        assert_eq!(to_unicode(e).matches('x').count(), 41);
+    }
+
     /// Issue 23: decimals print as decimals for people, far ones in scientific notation, and
     /// every printed form reads back to the same exact value.
     #[test]

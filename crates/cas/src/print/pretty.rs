@@ -7,6 +7,10 @@
 //! exponent (and the coefficient's denominator) drawn as a fraction; `sin² θ` is drawn as the
 //! course writes it.
 
+use std::cell::RefCell;
+
+use rustc_hash::FxHashMap;
+
 use crate::expr::{split_coefficient, Expr, Node};
 use crate::number::Number;
 use crate::Func;
@@ -32,11 +36,19 @@ enum Prec {
 }
 
 pub(super) fn print(e: Expr, style: Style) -> String {
-    Pretty { style }.expr(e).0
+    Pretty {
+        style,
+        memo: RefCell::default(),
+    }
+    .expr(e)
+    .0
 }
 
 struct Pretty {
     style: Style,
+    /// Each shared sub-expression is drawn once: drawing a node's parts more than once (an
+    /// exponent, a lone numerator or denominator) costs 2^depth on deep nestings otherwise.
+    memo: RefCell<FxHashMap<Expr, (String, Prec)>>,
 }
 
 impl Pretty {
@@ -69,6 +81,15 @@ impl Pretty {
     }
 
     fn expr(&self, e: Expr) -> (String, Prec) {
+        if let Some(done) = self.memo.borrow().get(&e) {
+            return done.clone();
+        }
+        let drawn = self.draw(e);
+        self.memo.borrow_mut().insert(e, drawn.clone());
+        drawn
+    }
+
+    fn draw(&self, e: Expr) -> (String, Prec) {
         match e.node() {
             Node::Number(n) => self.lone_number(n),
             Node::Symbol(s) => {
