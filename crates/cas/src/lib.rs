@@ -49,6 +49,6 @@ pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
 pub use form::NormalForm;
 pub use limits::{set_work_limits, work_limits, WorkLimitError, WorkLimits};
 pub use matrix::{Matrix, SolveError};
-pub use number::Number;
+pub use number::{LiteralError, Number, MAX_LITERAL_EXPONENT};
 pub use parse::{parse, ParseContext, ParseError};
 pub use solve::{solve_for, Condition, Solution, Solved};

@@ -1,10 +1,12 @@
-//! Numbers of the symbolic core: exact rationals of any size, and floats where a user wrote a
-//! decimal.
+//! Numbers of the symbolic core: exact rationals of any size, and floats where numeric work
+//! asks for one.
 //!
 //! [`Number`] keeps a fast path for rationals whose numerator and denominator fit in an `i64`
 //! and moves to big integers on overflow, so arithmetic is exact and never wraps silently.
-//! Floats are contagious (a float plus a rational is a float), as in every CAS; they only enter
-//! an expression when a user writes a decimal literal or asks for one.
+//! A number literal is exact whatever its form ([`Number::parse_literal`]: `0.7` is 7/10,
+//! `1e-3` is 1/1000), so no float enters an expression from what a user wrote. Floats are
+//! contagious (a float plus a rational is a float), as in every CAS; they come only from
+//! numeric evaluation ([`Expr::float`](crate::Expr::float)).
 
 use std::cmp::Ordering;
 use std::fmt;
@@ -14,6 +16,55 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
+
+/// The largest exponent a number literal may be written with (`1e10000` is accepted,
+/// `1e10001` is not): its exact value has about 33,000 bits, while `1e1000000000` would take
+/// gigabytes.
+pub const MAX_LITERAL_EXPONENT: u32 = 10_000;
+
+/// Why a number literal was refused.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LiteralError {
+    /// The text is not a number literal.
+    #[error("malformed number `{0}`")]
+    Malformed(String),
+    /// The written exponent is beyond ±[`MAX_LITERAL_EXPONENT`].
+    #[error("the exponent of `{text}` is beyond ±{limit}")]
+    ExponentTooLarge {
+        /// The literal as written.
+        text: String,
+        /// The largest exponent allowed.
+        limit: u32,
+    },
+}
+
+/// The exponent of a literal (after its `e`): an optional sign and digits, at most
+/// [`MAX_LITERAL_EXPONENT`] in size.
+fn parse_exponent(exponent: &str, text: &str) -> Result<i64, LiteralError> {
+    let digits = exponent.strip_prefix(['+', '-']).unwrap_or(exponent);
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(LiteralError::Malformed(text.to_owned()));
+    }
+    let too_large = || LiteralError::ExponentTooLarge {
+        text: text.to_owned(),
+        limit: MAX_LITERAL_EXPONENT,
+    };
+    let significant = digits.trim_start_matches('0');
+    // More than ten digits cannot be within the limit (and would overflow the parse).
+    if significant.len() > 10 {
+        return Err(too_large());
+    }
+    let size: i64 = significant.parse().unwrap_or(0);
+    if size > i64::from(MAX_LITERAL_EXPONENT) {
+        return Err(too_large());
+    }
+    Ok(if exponent.starts_with('-') {
+        -size
+    } else {
+        size
+    })
+}
 
 /// An exact rational (small or big) or a float.
 ///
@@ -66,15 +117,40 @@ impl Number {
         Number::Float(x)
     }
 
-    /// Parses a decimal literal as written (`12`, `0.5`, `1e-3`, `2.5E+4`): an integer literal is
-    /// exact, a literal with a point or an exponent is a float, as the user wrote it.
-    pub fn parse_literal(text: &str) -> Option<Number> {
-        if text.bytes().all(|b| b.is_ascii_digit()) && !text.is_empty() {
-            let n: BigInt = text.parse().ok()?;
-            return Some(Self::from_big(BigRational::from_integer(n)));
+    /// Parses a number literal (`12`, `0.5`, `.5`, `2.`, `1e-3`, `2.5E+4`) to its exact value:
+    /// `0.7` is 7/10, `9.81` is 981/100, `1e-3` is 1/1000, `2e0` is 2.
+    ///
+    /// # Errors
+    /// [`LiteralError::Malformed`] for text that is not a literal, and
+    /// [`LiteralError::ExponentTooLarge`] for a written exponent beyond
+    /// ±[`MAX_LITERAL_EXPONENT`] (its exact value would take unbounded memory).
+    pub fn parse_literal(text: &str) -> Result<Number, LiteralError> {
+        let malformed = || LiteralError::Malformed(text.to_owned());
+        let (digits, exponent) = match text.find(['e', 'E']) {
+            Some(at) => (&text[..at], parse_exponent(&text[at + 1..], text)?),
+            None => (text, 0),
+        };
+        let (integer, fraction) = digits.split_once('.').unwrap_or((digits, ""));
+        let all_digits = |s: &str| s.bytes().all(|b| b.is_ascii_digit());
+        if (integer.is_empty() && fraction.is_empty())
+            || !all_digits(integer)
+            || !all_digits(fraction)
+        {
+            return Err(malformed());
         }
-        let x: f64 = text.parse().ok()?;
-        x.is_finite().then_some(Number::Float(x))
+        let mantissa: BigInt = format!("{integer}{fraction}")
+            .parse()
+            .map_err(|_| malformed())?;
+        // The fraction's digits are part of the text, so this shift is bounded by the input's
+        // length plus the bounded exponent.
+        let shift = exponent - i64::try_from(fraction.len()).map_err(|_| malformed())?;
+        let power = num_traits::pow(BigInt::from(10), shift.unsigned_abs() as usize);
+        let value = if shift >= 0 {
+            BigRational::from_integer(mantissa * power)
+        } else {
+            BigRational::new(mantissa, power)
+        };
+        Ok(Self::from_big(value))
     }
 
     fn from_i128(num: i128, den: i128) -> Number {
@@ -198,6 +274,51 @@ impl Number {
             }
             Number::Float(x) => *x,
         }
+    }
+
+    /// The value as a terminating decimal `digits × 10^exponent` (`exponent < 0`, `digits`
+    /// not a multiple of 10) when it is an exact rational whose denominator has no prime factor
+    /// but 2 and 5 and is a multiple of 10 or of 25: the numbers people write as decimals
+    /// (`7/10` is `(7, −1)`, `49/200` is `(245, −3)`, `1/25` is `(4, −2)`). `None` for integers,
+    /// for `1/2`, `3/8`, `2/5`, `1/3` (which read better as fractions) and for floats.
+    pub fn to_decimal(&self) -> Option<(BigInt, i64)> {
+        let (digits, exponent, twos, fives) = self.terminating_decimal()?;
+        // Powers of 2 (`1/2`, `3/8`) and small ones of 5 (`2/5`) read better as fractions;
+        // `0.7`, `0.245`, `123.456` (= 15432/125) as decimals.
+        (fives > 0 && (twos > 0 || fives >= 2)).then_some((digits, exponent))
+    }
+
+    /// The value as a decimal `digits × 10^exponent` when it is a non-integer exact rational
+    /// whose denominator has no prime factor but 2 and 5 (`1/2` is `(5, −1)`): how a number
+    /// standing alone, such as a parameter's value, reads best. `None` otherwise.
+    pub fn to_terminating_decimal(&self) -> Option<(BigInt, i64)> {
+        self.terminating_decimal()
+            .map(|(digits, exponent, _, _)| (digits, exponent))
+    }
+
+    /// `(digits, exponent, a, b)` for a denominator `2^a 5^b > 1`.
+    fn terminating_decimal(&self) -> Option<(BigInt, i64, u64, u64)> {
+        let (num, den) = self.to_big_ratio()?;
+        let two = BigInt::from(2);
+        let five = BigInt::from(5);
+        let (mut twos, mut fives) = (0u64, 0u64);
+        let mut rest = den;
+        while (&rest % &two).is_zero() {
+            rest /= &two;
+            twos += 1;
+        }
+        while (&rest % &five).is_zero() {
+            rest /= &five;
+            fives += 1;
+        }
+        if !rest.is_one() || twos + fives == 0 {
+            return None;
+        }
+        // num/(2^a 5^b) = num 2^(k−a) 5^(k−b) / 10^k with k = max(a, b).
+        let k = twos.max(fives);
+        let scale =
+            num_traits::pow(two, (k - twos) as usize) * num_traits::pow(five, (k - fives) as usize);
+        Some((num * scale, -i64::try_from(k).ok()?, twos, fives))
     }
 
     /// The sign: -1, 0 or 1.
@@ -549,13 +670,76 @@ mod tests {
 
     #[test]
     fn literals_keep_what_the_user_wrote() {
-        assert_eq!(Number::parse_literal("12"), Some(Number::int(12)));
-        assert_eq!(Number::parse_literal("0.5"), Some(Number::Float(0.5)));
+        assert_eq!(Number::parse_literal("12"), Ok(Number::int(12)));
         assert!(Number::parse_literal("123456789012345678901234567890")
             .unwrap()
             .is_integer());
         assert_eq!(Number::Float(0.1).to_string(), "0.1");
         assert_eq!(Number::Float(3.0).to_string(), "3.0");
+    }
+
+    /// Issue 23: a decimal literal is an exact rational, never a float.
+    #[test]
+    fn decimal_literals_are_exact_rationals() {
+        let lit = |t: &str| Number::parse_literal(t).unwrap();
+        let q = |n, d| Number::rational(n, d).unwrap();
+        assert_eq!(lit("0.7"), q(7, 10));
+        assert_eq!(lit("9.81"), q(981, 100));
+        assert_eq!(lit("1e-3"), q(1, 1000));
+        assert_eq!(lit("2e0"), Number::int(2));
+        assert_eq!(lit("2.5E+4"), Number::int(25_000));
+        assert_eq!(lit(".5"), q(1, 2));
+        assert_eq!(lit("2."), Number::int(2));
+        assert_eq!(lit("0.000"), Number::ZERO);
+        assert_eq!(lit("1.50e-1"), q(3, 20));
+        let big = lit("1e308").mul(&Number::int(10));
+        let expected: BigInt = num_traits::pow(BigInt::from(10), 309);
+        assert_eq!(big, Number::from(expected));
+        assert!(!lit("1e-320").is_float() && lit("1e-320").signum() == 1);
+        assert_eq!(lit("1e10000").denom(), Number::ONE);
+    }
+
+    #[test]
+    fn numbers_people_write_as_decimals() {
+        let dec = |n: i64, d: i64| Number::rational(n, d).unwrap().to_decimal();
+        let d = |digits: i64, exponent: i64| Some((BigInt::from(digits), exponent));
+        assert_eq!(dec(7, 10), d(7, -1));
+        assert_eq!(dec(-981, 100), d(-981, -2));
+        assert_eq!(dec(49, 200), d(245, -3));
+        assert_eq!(dec(1, 1000), d(1, -3));
+        assert_eq!(dec(1, 2), None);
+        assert_eq!(dec(2, 5), None);
+        assert_eq!(dec(3, 8), None);
+        assert_eq!(dec(1, 25), d(4, -2));
+        assert_eq!(dec(15432, 125), d(123_456, -3));
+        assert_eq!(dec(1, 30), None);
+        assert_eq!(dec(3, 1), None);
+        assert_eq!(Number::Float(0.5).to_decimal(), None);
+        let alone = |n: i64, d: i64| Number::rational(n, d).unwrap().to_terminating_decimal();
+        assert_eq!(alone(1, 2), d(5, -1));
+        assert_eq!(alone(3, 5), d(6, -1));
+        assert_eq!(alone(1, 3), None);
+        assert_eq!(alone(4, 1), None);
+    }
+
+    #[test]
+    fn literals_beyond_the_exponent_limit_or_malformed_are_refused() {
+        for text in ["1e10001", "1e-1000000000", "1e99999999999999999999999"] {
+            assert_eq!(
+                Number::parse_literal(text),
+                Err(LiteralError::ExponentTooLarge {
+                    text: text.to_owned(),
+                    limit: MAX_LITERAL_EXPONENT
+                })
+            );
+        }
+        for text in ["", ".", "1e", "1e+", "x", "1.2.3", "-1", "1e-3.5", "١"] {
+            assert_eq!(
+                Number::parse_literal(text),
+                Err(LiteralError::Malformed(text.to_owned())),
+                "{text}"
+            );
+        }
     }
 
     #[test]

@@ -18,7 +18,8 @@
 //! atom    = number | name | name "(" sum ("," sum)* ")" | "(" sum ")"
 //! ```
 //!
-//! Names resolve as follows: a name listed in the context is a coordinate `q(t)`; `NAME_d`,
+//! Names resolve as follows: a name listed in the context, or whose rate the text uses
+//! (`x` in `sin(x)*x_d`), is a coordinate `q(t)`; `NAME_d`,
 //! `NAME_dd`, … are the rates of `NAME` (always: the suffix says it is a function of time); `t`
 //! is time, `pi` is π, `E` is Euler's number, `oo` and `nan` are the floats SymPy names so;
 //! anything else is a constant symbol. Implicit
@@ -30,7 +31,7 @@ use std::collections::BTreeSet;
 use std::ops::Range;
 
 use crate::expr::{Expr, Node, SymbolKind};
-use crate::number::Number;
+use crate::number::{LiteralError, Number};
 use crate::Func;
 
 /// The deepest nesting of parentheses, signs and powers the parser accepts.
@@ -52,6 +53,7 @@ const MAX_POWER_BITS: u64 = 1 << 20;
 /// ```
 pub fn parse(text: &str, ctx: &ParseContext) -> Result<Expr, ParseError> {
     let tokens = lex(text)?;
+    let ctx = &with_rated_names(text, &tokens, ctx);
     let mut p = Parser {
         src: text,
         tokens,
@@ -69,6 +71,22 @@ pub fn parse(text: &str, ctx: &ParseContext) -> Result<Expr, ParseError> {
         Tok::RParen => Err(p.error(ParseErrorKind::UnmatchedClose, t.span)),
         _ => Err(p.unexpected_after_operand(&t)),
     }
+}
+
+/// `ctx` with every name whose rate the text uses (`x_d`, `θ̇`) declared a function of time:
+/// `sin(x)*x_d` means the coordinate `x` and its rate, so that `d/dt` gives `cos x ẋ²`
+/// (issue 14), rather than a constant `x` beside a rate of another `x`.
+fn with_rated_names(text: &str, tokens: &[Token], ctx: &ParseContext) -> ParseContext {
+    let mut out = ctx.clone();
+    for t in tokens.iter().filter(|t| t.tok == Tok::Name) {
+        let (name, marks) = from_unicode_name(&text[t.span.clone()]);
+        if marks > 0 {
+            out.time_functions.insert(name);
+        } else if let Some((base, _)) = split_rate_suffix(&name) {
+            out.time_functions.insert(base.to_owned());
+        }
+    }
+    out
 }
 
 /// Which names denote functions of time; everything else the parser resolves by itself.
@@ -208,6 +226,17 @@ pub enum ParseErrorKind {
     /// Nesting deeper than [`MAX_DEPTH`].
     #[error("expression nested more than {0} levels deep")]
     TooDeep(usize),
+    /// A number literal whose written exponent is beyond the limit.
+    #[error("the exponent of `{text}` is too large (at most ±{limit})")]
+    ExponentTooLarge {
+        /// The literal as written.
+        text: String,
+        /// The largest exponent allowed.
+        limit: u32,
+    },
+    /// A division by an expression that is zero (`1/0`, `x/(y - y)`, `0^-1`).
+    #[error("division by zero")]
+    DivisionByZero,
     /// A numeric power whose exact value would be astronomically large.
     #[error("this power of a number is too large to compute exactly")]
     NumberTooLarge,
@@ -274,8 +303,14 @@ impl ParseError {
             ParseErrorKind::TooDeep(_) => {
                 Some("split the expression or remove redundant parentheses".into())
             }
+            ParseErrorKind::ExponentTooLarge { .. } => {
+                Some("numbers are exact: write the quantity in other units, or as a symbol".into())
+            }
+            ParseErrorKind::DivisionByZero => {
+                Some("this divisor is zero: the expression has no value".into())
+            }
             ParseErrorKind::NumberTooLarge => {
-                Some("use a float (`2.0^1000000`) or a smaller exponent".into())
+                Some("numbers are exact: use a smaller exponent, or keep the base a symbol".into())
             }
         }
     }
@@ -376,12 +411,8 @@ fn lex(src: &str) -> Result<Vec<Token>, ParseError> {
             c if c.is_ascii_digit() || c == '.' => {
                 let end = number_end(src, i);
                 let text = &src[i..end];
-                if Number::parse_literal(text).is_none() {
-                    return Err(error_at(
-                        src,
-                        ParseErrorKind::BadNumber(text.to_owned()),
-                        i..end,
-                    ));
+                if let Err(e) = Number::parse_literal(text) {
+                    return Err(error_at(src, literal_error_kind(e), i..end));
                 }
                 while it.peek().is_some_and(|&(j, _)| j < end) {
                     it.next();
@@ -603,7 +634,11 @@ impl Parser<'_> {
             };
             self.bump();
             self.expect_operand(&t)?;
+            let start = self.peek().span.start;
             let f = self.unary()?;
+            if divide {
+                self.nonzero_divisor(f, start)?;
+            }
             factors.push(if divide { f.powi(-1) } else { f });
         }
         Ok(if factors.len() == 1 {
@@ -644,7 +679,21 @@ impl Parser<'_> {
         if power_too_large(base, exp) {
             return Err(self.error(ParseErrorKind::NumberTooLarge, start..end));
         }
+        if base.is_literal_zero() && exp.as_number().is_some_and(|n| n.signum() < 0) {
+            return Err(self.error(ParseErrorKind::DivisionByZero, start..end));
+        }
         Ok(base.pow(exp))
+    }
+
+    /// Refuses a divisor that is zero as built (`0`, `x - x`, `2 - 2`): the constructors
+    /// would otherwise fold `0 * (1/0)` or `(x-x)/(x-x)` to a silent 0. A divisor that is zero
+    /// only after normalisation (`sin(x)^2 + cos(x)^2 - 1`) is not detected here.
+    fn nonzero_divisor(&self, divisor: Expr, start: usize) -> Result<(), ParseError> {
+        if divisor.is_literal_zero() {
+            let end = self.tokens[self.pos.saturating_sub(1)].span.end;
+            return Err(self.error(ParseErrorKind::DivisionByZero, start..end));
+        }
+        Ok(())
     }
 
     fn atom(&mut self) -> Result<Expr, ParseError> {
@@ -652,9 +701,8 @@ impl Parser<'_> {
         let e = match t.tok {
             Tok::Number => {
                 let text = self.text(&t.span);
-                let n = Number::parse_literal(text).ok_or_else(|| {
-                    self.error(ParseErrorKind::BadNumber(text.to_owned()), t.span.clone())
-                })?;
+                let n = Number::parse_literal(text)
+                    .map_err(|e| self.error(literal_error_kind(e), t.span.clone()))?;
                 Expr::number(n)
             }
             Tok::Name => {
@@ -786,6 +834,9 @@ impl Parser<'_> {
             }
             "Rational" => {
                 arity(2)?;
+                if args[1].is_literal_zero() {
+                    return Err(self.error(ParseErrorKind::DivisionByZero, span.clone()));
+                }
                 Ok(args[0] / args[1])
             }
             // SymPy writes a function of time as `theta(t)`; read it as the coordinate.
@@ -801,6 +852,15 @@ impl Parser<'_> {
                 name_tok.span.clone(),
             )),
         }
+    }
+}
+
+fn literal_error_kind(e: LiteralError) -> ParseErrorKind {
+    match e {
+        LiteralError::ExponentTooLarge { text, limit } => {
+            ParseErrorKind::ExponentTooLarge { text, limit }
+        }
+        LiteralError::Malformed(text) => ParseErrorKind::BadNumber(text),
     }
 }
 
@@ -967,8 +1027,8 @@ mod tests {
         assert_eq!(p("Rational(1, 2)*x"), x / 2);
         assert_eq!(p("sqrt(x)"), x.sqrt());
         assert_eq!(p("atan2(y, x)"), Expr::atan2(y, x));
-        assert_eq!(p("0.5"), Expr::float(0.5));
-        assert_eq!(p("2E-3"), Expr::float(2e-3));
+        assert_eq!(p("0.5"), Expr::rational(1, 2).unwrap());
+        assert_eq!(p("2E-3"), Expr::rational(1, 500).unwrap());
         assert_eq!(
             p("12345678901234567890123")
                 .as_number()
@@ -1029,6 +1089,14 @@ mod tests {
         assert_eq!(err("").kind(), &ParseErrorKind::Empty);
         assert_eq!(err("2**10**10").kind(), &ParseErrorKind::NumberTooLarge);
         assert_eq!(
+            err("1e10001").kind(),
+            &ParseErrorKind::ExponentTooLarge {
+                text: "1e10001".into(),
+                limit: 10_000
+            }
+        );
+        assert_eq!(err("2 + 1e-1000000000").column(), 5);
+        assert_eq!(
             err(&"(".repeat(1000)).kind(),
             &ParseErrorKind::TooDeep(MAX_DEPTH)
         );
@@ -1036,6 +1104,51 @@ mod tests {
             err(&"-".repeat(1000)).kind(),
             &ParseErrorKind::TooDeep(MAX_DEPTH)
         );
+    }
+
+    /// Issue 14: `sin(x)*x_d` read `x` as a constant, so its time derivative lost `cos x ẋ²`.
+    #[test]
+    fn a_name_with_a_rate_in_the_text_is_a_coordinate() {
+        let e = parse("sin(x)*x_d", &ParseContext::new()).unwrap();
+        let x = Expr::coordinate("x");
+        assert_eq!(e, x.sin() * Expr::rate("x", 1));
+        let expected = x.cos() * Expr::rate("x", 1).powi(2) + x.sin() * Expr::rate("x", 2);
+        assert!(e.dt().equals(expected));
+        assert_eq!(
+            parse("ẋ + x", &ParseContext::new()).unwrap(),
+            Expr::rate("x", 1) + x
+        );
+        // Without a rate, a name stays a constant.
+        assert_eq!(
+            parse("sin(y)", &ParseContext::new()).unwrap(),
+            Expr::symbol("y").sin()
+        );
+    }
+
+    /// Issue 14: a division by zero is an error at the divisor, never a silent 0.
+    #[test]
+    fn division_by_zero_is_an_error_at_the_divisor() {
+        for (text, column) in [
+            ("0/0", 3),
+            ("(x-x)/(x-x)", 7),
+            ("0*(1/0)", 6),
+            ("1/0-1/0", 3),
+            ("y/(2 - 2)", 3),
+            ("1 + 0^-1", 5),
+            ("(y - y)**(-2)", 1),
+            ("Rational(1, 0)", 1),
+            ("x/0.0", 3),
+        ] {
+            let e = err(text);
+            assert_eq!(
+                (e.kind(), e.column()),
+                (&ParseErrorKind::DivisionByZero, column),
+                "{text}"
+            );
+        }
+        // Zero divided by something, and zero to a positive power, are fine.
+        assert_eq!(p("0/x"), Expr::zero());
+        assert_eq!(p("0^2"), Expr::zero());
     }
 
     proptest! {

@@ -130,6 +130,13 @@ pub enum DiagnosticKind {
         /// The literal.
         text: String,
     },
+    /// A non-zero number literal too small for a double-precision value (it would read as a
+    /// subnormal number or as 0).
+    #[error("number `{text}` is too small for numeric work")]
+    NumberUnderflow {
+        /// The literal.
+        text: String,
+    },
     /// A clause given twice in one statement (`mass` twice in a `body`, say).
     #[error("`{clause}` is given twice")]
     DuplicateClause {
@@ -401,6 +408,14 @@ pub enum DiagnosticKind {
         /// The parameter.
         name: String,
     },
+    /// Several parameters that no expression uses, in one warning.
+    #[error("{} parameters are never used: {}{}", .names.len() + .more, list_names(.names), if *.more > 0 { format!(" and {} more", .more) } else { String::new() })]
+    UnusedParameters {
+        /// The first few of them.
+        names: Vec<String>,
+        /// How many more there are.
+        more: usize,
+    },
 
     // --- values (from `Model::require_values`) ----------------------------------------------
     /// A parameter or input without a numeric value, when numbers are needed.
@@ -410,6 +425,13 @@ pub enum DiagnosticKind {
         name: String,
         /// Parameter or input.
         kind: NameKind,
+    },
+    /// A constant value that numeric work cannot use: it divides by zero, overflows or
+    /// underflows double precision, or is not a real number.
+    #[error("this value {reason}")]
+    UnusableValue {
+        /// What is wrong with it ("divides by zero", …).
+        reason: &'static str,
     },
     /// `simulate` needs an end time.
     #[error("the simulation has no end time")]
@@ -428,6 +450,7 @@ impl DiagnosticKind {
             UnknownStatement { .. } => "not a statement keyword".to_string(),
             TooDeep { .. } => "nested too deeply".to_string(),
             NumberOutOfRange { .. } => "too large".to_string(),
+            NumberUnderflow { .. } => "too small".to_string(),
             DuplicateClause { .. } => "given again here".to_string(),
             UnknownOption { .. } => "not an option here".to_string(),
             UnknownName { .. } => "not declared".to_string(),
@@ -456,8 +479,11 @@ impl DiagnosticKind {
             DuplicateInitial { .. } => "given again here".to_string(),
             ConstraintWithoutCoordinates => "no coordinate here".to_string(),
             NonPositiveMass { value } | NegativeMoment { value } => format!("= {value}"),
-            UnusedCoordinate { .. } | UnusedParameter { .. } => "declared here".to_string(),
+            UnusedCoordinate { .. } | UnusedParameter { .. } | UnusedParameters { .. } => {
+                "declared here".to_string()
+            }
             MissingValue { .. } => "no value".to_string(),
+            UnusableValue { reason } => (*reason).to_string(),
             _ => return None,
         })
     }
@@ -473,6 +499,7 @@ impl DiagnosticKind {
             UnclosedParenthesis => "E004",
             TooDeep { .. } => "E005",
             NumberOutOfRange { .. } => "E006",
+            NumberUnderflow { .. } => "E009",
             DuplicateClause { .. } => "E007",
             UnknownOption { .. } => "E008",
             UnknownName { .. } => "E101",
@@ -509,11 +536,20 @@ impl DiagnosticKind {
             NonPositiveMass { .. } => "E311",
             NegativeMoment { .. } => "E312",
             UnusedCoordinate { .. } => "W001",
-            UnusedParameter { .. } => "W002",
+            UnusedParameter { .. } | UnusedParameters { .. } => "W002",
             MissingValue { .. } => "E401",
             MissingEndTime => "E402",
+            UnusableValue { .. } => "E403",
         }
     }
+}
+
+fn list_names(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A secondary place shown with a diagnostic, with a short note.

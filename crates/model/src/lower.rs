@@ -205,7 +205,7 @@ impl Lowerer<'_> {
         };
         Ok(match &e.kind {
             ExprKind::Number { text, value } => Value::Scalar(
-                Number::parse_literal(text).map_or_else(|| Cx::float(*value), Cx::number),
+                Number::parse_literal(text).map_or_else(|_| Cx::float(*value), Cx::number),
             ),
             ExprKind::Time => Value::Scalar(Cx::time()),
             ExprKind::Pi => Value::Scalar(Cx::pi()),

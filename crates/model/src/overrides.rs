@@ -4,7 +4,7 @@
 //! written `q_d` or `q'`) the given initial value. Parameters defined from the overridden one
 //! (`I = m*l^2/3`) follow, since values are read from the model's expressions afterwards.
 
-use crate::diagnostic::Type;
+use crate::diagnostic::{DiagnosticKind, Type};
 use crate::model::{Declaration, Expr, ExprKind, InitialValue, Model};
 
 /// Why a `NAME=VALUE` override was refused.
@@ -39,6 +39,22 @@ pub enum OverrideError {
         /// The name given.
         name: String,
     },
+    /// The value is non-zero but below the smallest normal double (2.2e-308).
+    #[error("the value of `{name}` is too small for numeric work (non-zero values must be at least 2.2e-308 in size)")]
+    TooSmall {
+        /// The name given.
+        name: String,
+    },
+    /// With the new values, a value of the model (a parameter defined from the one set, a
+    /// mass…) is one numeric work cannot use.
+    #[error("with these values, a value of the model {reason}")]
+    UnusableValue {
+        /// What is wrong with it.
+        reason: &'static str,
+        /// Where the expression is in the model's source (for a caller that has the source
+        /// to show it with its line and column).
+        span: crate::span::Span,
+    },
 }
 
 fn hint(known: &[String]) -> String {
@@ -59,12 +75,27 @@ impl Model {
         for (name, value) in overrides {
             model.set_value(name, *value)?;
         }
+        if let Some(problem) = model.value_diagnostics().into_iter().next() {
+            let reason = match problem.kind {
+                DiagnosticKind::UnusableValue { reason } => reason,
+                _ => "makes a mass zero, negative or too small to compute with",
+            };
+            return Err(OverrideError::UnusableValue {
+                reason,
+                span: problem.span,
+            });
+        }
         Ok(model)
     }
 
     fn set_value(&mut self, name: &str, value: f64) -> Result<(), OverrideError> {
         if !value.is_finite() {
             return Err(OverrideError::NotFinite {
+                name: name.to_owned(),
+            });
+        }
+        if value != 0.0 && !value.is_normal() {
+            return Err(OverrideError::TooSmall {
                 name: name.to_owned(),
             });
         }

@@ -762,28 +762,26 @@ impl<'s> Parser<'s> {
             Token::Number => {
                 self.bump();
                 let text = self.text(token.span);
-                match text.parse::<f64>() {
-                    Ok(value) if value.is_finite() => {
-                        let number = Number {
-                            text: text.to_string(),
-                            value,
-                        };
-                        Ok((
-                            Expr {
-                                kind: ExprKind::Number(number),
-                                span: token.span,
-                            },
-                            1,
-                        ))
-                    }
-                    _ => Err(Diagnostic::new(
-                        DiagnosticKind::NumberOutOfRange {
-                            text: text.to_string(),
-                        },
-                        token.span,
-                    )
-                    .with_help("Numbers must be finite double-precision values (|x| < 1.8e308).")),
-                }
+                let value = number_value(text).map_err(|kind| {
+                    let help = match kind {
+                        DiagnosticKind::NumberUnderflow { .. } => {
+                            "Numeric work uses double precision: a non-zero number must be at least 2.2e-308 in size. Write 0, or use other units."
+                        }
+                        _ => "Numbers must be finite double-precision values (|x| < 1.8e308): use other units.",
+                    };
+                    Diagnostic::new(kind, token.span).with_help(help)
+                })?;
+                let number = Number {
+                    text: text.to_string(),
+                    value,
+                };
+                Ok((
+                    Expr {
+                        kind: ExprKind::Number(number),
+                        span: token.span,
+                    },
+                    1,
+                ))
             }
             Token::Name => {
                 self.bump();
@@ -907,6 +905,27 @@ impl<'s> Parser<'s> {
                 .with_related(open, "to close this parenthesis"))
         }
     }
+}
+
+/// The double-precision value of a number literal, whose exact value (`cas::Number`) is what
+/// the symbolic work uses: refused when numeric work could not use it — too large for a
+/// double, or non-zero but below the smallest normal double (`1e-320` is subnormal, `1e-400`
+/// would read as 0), which turns into NaNs and stalls far from the literal.
+fn number_value(text: &str) -> Result<f64, DiagnosticKind> {
+    let out_of_range = || DiagnosticKind::NumberOutOfRange {
+        text: text.to_string(),
+    };
+    let exact = cas::Number::parse_literal(text).map_err(|_| out_of_range())?;
+    let value: f64 = text.parse().map_err(|_| out_of_range())?;
+    if !value.is_finite() {
+        return Err(out_of_range());
+    }
+    if !exact.is_zero() && !value.is_normal() {
+        return Err(DiagnosticKind::NumberUnderflow {
+            text: text.to_string(),
+        });
+    }
+    Ok(value)
 }
 
 #[cfg(test)]

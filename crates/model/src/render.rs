@@ -67,7 +67,27 @@ pub fn render(
         let end = span.end.min(source.len());
         span.start.min(end)..end
     };
-    for diagnostic in sorted {
+    // One source index for all diagnostics: building it per diagnostic made rendering
+    // quadratic in the file (issue 14).
+    let mut cache = (file_name, Source::from(source));
+    let index = LineIndex::new(source);
+    let total = sorted.len();
+    for (shown, diagnostic) in sorted.into_iter().enumerate() {
+        if shown == MAX_RENDERED {
+            out.extend_from_slice(
+                format!(
+                    "… and {} more diagnostic{} (fix these first)\n",
+                    total - shown,
+                    if total - shown == 1 { "" } else { "s" }
+                )
+                .as_bytes(),
+            );
+            break;
+        }
+        if let Some(excerpt) = long_line_excerpt(diagnostic, file_name, source, &index) {
+            out.extend_from_slice(excerpt.as_bytes());
+            continue;
+        }
         let kind = match diagnostic.severity {
             Severity::Error => ReportKind::Error,
             Severity::Warning => ReportKind::Warning,
@@ -103,11 +123,7 @@ pub fn render(
         }
         // Writing into a Vec<u8> cannot fail; if ariadne ever reports an error, fall back to
         // the short form so that the diagnostic is not lost.
-        if report
-            .finish()
-            .write((file_name, Source::from(source)), &mut out)
-            .is_err()
-        {
+        if report.finish().write(&mut cache, &mut out).is_err() {
             out.extend_from_slice(
                 render_short(std::slice::from_ref(diagnostic), file_name, source).as_bytes(),
             );
@@ -116,26 +132,83 @@ pub fn render(
     String::from_utf8_lossy(&out).into_owned()
 }
 
+/// At most this many diagnostics are drawn in full; the rest are counted.
+const MAX_RENDERED: usize = 50;
+
+/// Source lines longer than this are not drawn whole: only an excerpt around the span.
+const MAX_LINE: usize = 200;
+
+/// Characters of context shown on each side of the span in an excerpt.
+const EXCERPT_CONTEXT: usize = 40;
+
+/// For a diagnostic on a line longer than [`MAX_LINE`], the short header and an excerpt of the
+/// line around the span, underlined (`None` for ordinary lines, which ariadne draws).
+fn long_line_excerpt(
+    diagnostic: &Diagnostic,
+    file_name: &str,
+    source: &str,
+    index: &LineIndex,
+) -> Option<String> {
+    let start = floor_boundary(source, diagnostic.span.start.min(source.len()));
+    let line_start = source[..start].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = source[start..]
+        .find('\n')
+        .map_or(source.len(), |i| start + i);
+    if line_end - line_start <= MAX_LINE {
+        return None;
+    }
+    let end = floor_boundary(source, diagnostic.span.end.clamp(start, line_end));
+    let from = floor_boundary(
+        source,
+        start.saturating_sub(EXCERPT_CONTEXT).max(line_start),
+    );
+    let to = floor_boundary(source, (end + EXCERPT_CONTEXT).min(line_end).max(end));
+    let before = if from > line_start { "…" } else { "" };
+    let after = if to < line_end { "…" } else { "" };
+    let pad = before.chars().count() + source[from..start].chars().count();
+    let width = source[start..end]
+        .chars()
+        .count()
+        .clamp(1, 2 * EXCERPT_CONTEXT);
+    let mut out = short_line(diagnostic, file_name, index);
+    out.push_str(&format!("  | {before}{}{after}\n", &source[from..to]));
+    out.push_str(&format!("  | {}{}\n", " ".repeat(pad), "^".repeat(width)));
+    Some(out)
+}
+
+fn floor_boundary(s: &str, mut i: usize) -> usize {
+    i = i.min(s.len());
+    while !s.is_char_boundary(i) {
+        i -= 1;
+    }
+    i
+}
+
 /// Render one line per diagnostic: `file:line:column: error[E101]: message (help: …)`.
 #[must_use]
 pub fn render_short(diagnostics: &[Diagnostic], file_name: &str, source: &str) -> String {
     let index = LineIndex::new(source);
-    let mut out = String::new();
-    for diagnostic in diagnostics {
-        let position = index.line_col(diagnostic.span.start);
-        let severity = match diagnostic.severity {
-            Severity::Error => "error",
-            Severity::Warning => "warning",
-        };
-        out.push_str(&format!(
-            "{file_name}:{position}: {severity}[{}]: {}",
-            diagnostic.kind.code(),
-            diagnostic.message()
-        ));
-        if let Some(help) = &diagnostic.help {
-            out.push_str(&format!(" (help: {help})"));
-        }
-        out.push('\n');
+    diagnostics
+        .iter()
+        .map(|d| short_line(d, file_name, &index))
+        .collect()
+}
+
+/// `file:line:column: error[E101]: message (help: …)` and a line break.
+fn short_line(diagnostic: &Diagnostic, file_name: &str, index: &LineIndex) -> String {
+    let position = index.line_col(diagnostic.span.start);
+    let severity = match diagnostic.severity {
+        Severity::Error => "error",
+        Severity::Warning => "warning",
+    };
+    let mut out = format!(
+        "{file_name}:{position}: {severity}[{}]: {}",
+        diagnostic.kind.code(),
+        diagnostic.message()
+    );
+    if let Some(help) = &diagnostic.help {
+        out.push_str(&format!(" (help: {help})"));
     }
+    out.push('\n');
     out
 }

@@ -347,7 +347,10 @@ fn pull_common_factor(terms: Vec<Expr>) -> Expr {
         .collect();
 
     // The numeric content: the gcd of exact coefficients, negative when every term is.
-    let exact = split.iter().all(|(c, _)| !c.is_float());
+    // Decimals (`9.81 x + 0.001`) read best as written: pulling `0.001` out of them would not.
+    let exact = split
+        .iter()
+        .all(|(c, _)| !c.is_float() && c.to_decimal().is_none());
     let mut content = Number::ONE;
     if exact {
         content = split

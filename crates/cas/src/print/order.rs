@@ -9,6 +9,8 @@
 
 use std::cmp::Ordering;
 
+use rustc_hash::FxHashSet;
+
 use crate::expr::{split_coefficient, Expr, Node, SymbolKind};
 
 use super::names::is_greek;
@@ -55,13 +57,21 @@ pub(super) fn cmp_factors(a: Expr, b: Expr) -> Ordering {
         })
 }
 
-/// Whether `e` depends on time (contains time, a coordinate or a rate).
+/// Whether `e` depends on time (contains time, a coordinate or a rate). Each shared node is
+/// visited once: a tree walk of a DAG such as the derivative of a power tower is exponential.
 pub(super) fn has_time(e: Expr) -> bool {
-    match e.node() {
-        Node::Symbol(s) => s.kind() != SymbolKind::Constant,
-        Node::Number(_) | Node::Constant(_) => false,
-        _ => e.children().iter().any(|c| has_time(*c)),
+    let mut seen = FxHashSet::default();
+    let mut stack = vec![e];
+    while let Some(x) = stack.pop() {
+        if !seen.insert(x) {
+            continue;
+        }
+        match x.node() {
+            Node::Symbol(s) if s.kind() != SymbolKind::Constant => return true,
+            _ => stack.extend_from_slice(x.children()),
+        }
     }
+    false
 }
 
 struct TermInfo {

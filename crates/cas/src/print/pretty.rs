@@ -7,6 +7,10 @@
 //! exponent (and the coefficient's denominator) drawn as a fraction; `sin² θ` is drawn as the
 //! course writes it.
 
+use std::cell::RefCell;
+
+use rustc_hash::FxHashMap;
+
 use crate::expr::{split_coefficient, Expr, Node};
 use crate::number::Number;
 use crate::Func;
@@ -32,11 +36,19 @@ enum Prec {
 }
 
 pub(super) fn print(e: Expr, style: Style) -> String {
-    Pretty { style }.expr(e).0
+    Pretty {
+        style,
+        memo: RefCell::default(),
+    }
+    .expr(e)
+    .0
 }
 
 struct Pretty {
     style: Style,
+    /// Each shared sub-expression is drawn once: drawing a node's parts more than once (an
+    /// exponent, a lone numerator or denominator) costs 2^depth on deep nestings otherwise.
+    memo: RefCell<FxHashMap<Expr, (String, Prec)>>,
 }
 
 impl Pretty {
@@ -69,8 +81,17 @@ impl Pretty {
     }
 
     fn expr(&self, e: Expr) -> (String, Prec) {
+        if let Some(done) = self.memo.borrow().get(&e) {
+            return done.clone();
+        }
+        let drawn = self.draw(e);
+        self.memo.borrow_mut().insert(e, drawn.clone());
+        drawn
+    }
+
+    fn draw(&self, e: Expr) -> (String, Prec) {
         match e.node() {
-            Node::Number(n) => self.number(n),
+            Node::Number(n) => self.lone_number(n),
             Node::Symbol(s) => {
                 let text = if self.latex() {
                     names::latex(*s)
@@ -96,10 +117,30 @@ impl Pretty {
         }
     }
 
+    /// A number standing alone (a parameter's value, say) reads as the decimal it was
+    /// probably written as whenever it is one (`0.5`, `0.4`); as a coefficient, `1/2` and `2/5`
+    /// stay fractions (`½ m v²`), see [`Pretty::number`].
+    fn lone_number(&self, n: &Number) -> (String, Prec) {
+        match n.abs().to_terminating_decimal() {
+            Some((digits, exponent)) if digits.to_string().len() <= 12 => {
+                let (s, p) = self.decimal(&digits.to_string(), exponent);
+                if n.is_negative() {
+                    (format!("{}{s}", self.minus()), Prec::Product)
+                } else {
+                    (s, p)
+                }
+            }
+            _ => self.number(n),
+        }
+    }
+
     fn number(&self, n: &Number) -> (String, Prec) {
         if n.is_negative() {
             let (s, _) = self.number(&n.neg());
             return (format!("{}{s}", self.minus()), Prec::Product);
+        }
+        if let Some((digits, exponent)) = n.to_decimal() {
+            return self.decimal(&digits.to_string(), exponent);
         }
         match n {
             Number::Float(_) => (n.to_string(), Prec::Atom),
@@ -109,6 +150,35 @@ impl Pretty {
                 Prec::Atom,
             ),
             _ => (format!("{}/{}", n.numer(), n.denom()), Prec::Product),
+        }
+    }
+
+    /// `digits × 10^exponent` (`exponent < 0`) as people write it: `9.81`, `0.001`, and in
+    /// scientific notation once more than a few zeros would follow the point (`1.5e-300`,
+    /// which the parser reads back exactly).
+    fn decimal(&self, digits: &str, exponent: i64) -> (String, Prec) {
+        let len = i64::try_from(digits.len()).unwrap_or(i64::MAX);
+        let leading_zeros = -exponent - len;
+        if leading_zeros < 0 {
+            let point = digits.len() - exponent.unsigned_abs() as usize;
+            return (
+                format!("{}.{}", &digits[..point], &digits[point..]),
+                Prec::Atom,
+            );
+        }
+        if leading_zeros <= 4 {
+            let zeros = "0".repeat(leading_zeros as usize);
+            return (format!("0.{zeros}{digits}"), Prec::Atom);
+        }
+        let mantissa = match digits.len() {
+            1 => digits.to_owned(),
+            _ => format!("{}.{}", &digits[..1], &digits[1..]),
+        };
+        let power = exponent + len - 1;
+        if self.latex() {
+            (format!(r"{mantissa} \cdot 10^{{{power}}}"), Prec::Product)
+        } else {
+            (format!("{mantissa}e{power}"), Prec::Atom)
         }
     }
 
@@ -147,8 +217,10 @@ impl Pretty {
         }
         let mut factors = factors.to_vec();
         factors.sort_by(|a, b| cmp_factors(*a, *b));
+        // A float or a decimal (`0.49 m`) is written whole in front, not as a fraction.
         let (p, q) = match coefficient {
             Number::Float(_) => (coefficient.clone(), Number::ONE),
+            _ if coefficient.to_decimal().is_some() => (coefficient.clone(), Number::ONE),
             _ => (coefficient.numer(), coefficient.denom()),
         };
         let mut num: Vec<String> = Vec::new();
@@ -247,11 +319,13 @@ impl Pretty {
             return self.power_number(base, n);
         }
         let b = self.base(base);
-        let x = self.expr(exp).0;
+        // The exponent is printed once: printing it twice per level made a tower `x^x^…^x`
+        // cost 2^depth (issue 23).
+        let (x, precedence) = self.expr(exp);
         if self.latex() {
             (format!("{b}^{{{x}}}"), Prec::Power)
         } else {
-            let x = self.wrap((x, self.expr(exp).1), Prec::Atom);
+            let x = self.wrap((x, precedence), Prec::Atom);
             (format!("{b}^{x}"), Prec::Power)
         }
     }

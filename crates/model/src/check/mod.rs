@@ -83,6 +83,9 @@ struct Checker {
     used: std::collections::HashSet<String>,
 }
 
+/// How many names a grouped warning lists (and points at) before "and N more".
+const MAX_LISTED_NAMES: usize = 8;
+
 fn id(len: usize) -> u32 {
     // A model file cannot have 2³² declarations of one kind (it would be > 4 GB).
     u32::try_from(len).unwrap_or(u32::MAX)
@@ -460,18 +463,47 @@ impl Checker {
                 );
             }
         }
-        for parameter in &self.model.parameters {
-            if !self.used.contains(&parameter.name.name) {
-                let name = parameter.name.name.clone();
-                self.diagnostics.push(
-                    Diagnostic::warning(
-                        DiagnosticKind::UnusedParameter { name: name.clone() },
-                        parameter.name.span,
-                    )
-                    .with_help(format!(
-                        "Remove `{name}`, or use it where it was meant to be."
-                    )),
-                );
+        let unused: Vec<&Name> = self
+            .model
+            .parameters
+            .iter()
+            .map(|p| &p.name)
+            .filter(|n| !self.used.contains(&n.name))
+            .collect();
+        match unused.as_slice() {
+            [] => {}
+            [one] => self.diagnostics.push(
+                Diagnostic::warning(
+                    DiagnosticKind::UnusedParameter {
+                        name: one.name.clone(),
+                    },
+                    one.span,
+                )
+                .with_help(format!(
+                    "Remove `{}`, or use it where it was meant to be.",
+                    one.name
+                )),
+            ),
+            // One warning for all of them: 5,000 unused parameters were 5,000 warnings, each
+            // re-printing the source line (issue 14).
+            [first, rest @ ..] => {
+                let shown: Vec<String> = unused
+                    .iter()
+                    .take(MAX_LISTED_NAMES)
+                    .map(|n| n.name.clone())
+                    .collect();
+                let mut diagnostic = Diagnostic::warning(
+                    DiagnosticKind::UnusedParameters {
+                        more: unused.len() - shown.len(),
+                        names: shown,
+                    },
+                    first.span,
+                )
+                .with_help("Remove them, or use them where they were meant to be.");
+                for other in rest.iter().take(MAX_LISTED_NAMES - 1) {
+                    diagnostic = diagnostic.with_related(other.span, "never used");
+                }
+                self.diagnostics.push(diagnostic);
             }
         }
     }
@@ -518,10 +550,10 @@ impl Checker {
     fn mass(&mut self, mass: &ast::Expr) -> Option<Expr> {
         let mass = self.expr(mass, Type::Scalar, Place::constant("a mass"))?;
         match self.model.evaluate_constant(&mass) {
-            Some(value) if value.is_nan() || value <= 0.0 => {
+            Some(value) if value.is_nan() || value <= 0.0 || !value.is_normal() => {
                 self.diagnostics.push(
                     Diagnostic::new(DiagnosticKind::NonPositiveMass { value }, mass.span)
-                        .with_help("Give a positive mass; a massless point needs no `particle`."),
+                        .with_help("Give a positive mass (at least 2.2e-308; use other units for smaller ones); a massless point needs no `particle`."),
                 );
                 None
             }
@@ -1259,6 +1291,15 @@ impl Checker {
     fn finish(&mut self) {
         if !self.diagnostics.iter().any(Diagnostic::is_error) {
             self.unused();
+            // Values the file gives that numeric work could not use (`1/0`, an overflowing
+            // product) are errors at their place now, not NaNs far downstream. Masses were
+            // checked where they were declared.
+            let values = self.model.value_diagnostics();
+            self.diagnostics.extend(
+                values
+                    .into_iter()
+                    .filter(|d| matches!(d.kind, DiagnosticKind::UnusableValue { .. })),
+            );
         }
         let free = self.model.free_coordinates().count();
         if free == 0 && !self.diagnostics.iter().any(Diagnostic::is_error) {

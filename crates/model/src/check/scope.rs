@@ -201,9 +201,7 @@ impl Scope {
             Some(best) => diagnostic.with_help(format!("Did you mean `{best}`?")),
             None => diagnostic.with_help(match wanted {
                 Some(NameKind::Point) => format!("Define it first: `point {name} = …`."),
-                Some(NameKind::Frame) => {
-                    format!("Define it first: `frame {name} = N rotated … about z`.")
-                }
+                Some(NameKind::Frame) => self.define_frame_help(name),
                 Some(NameKind::Body) => {
                     format!("Define it first: `body {name} mass … at … frame … inertia …`.")
                 }
@@ -215,6 +213,26 @@ impl Scope {
                     "Declare `{name}` first, e.g. `parameters {name} = 1` or `coordinates {name}`."
                 ),
             }),
+        }
+    }
+
+    /// How to define a missing frame: rotated from a frame already declared (the earliest,
+    /// usually the inertial one), or, when there is none, as the inertial frame itself —
+    /// never `frame N = N rotated …`, which refers to itself.
+    fn define_frame_help(&self, name: &str) -> String {
+        let parent = self
+            .entries
+            .iter()
+            .filter(|(other, entry)| entry.kind == NameKind::Frame && other.as_str() != name)
+            .min_by_key(|(_, entry)| entry.span.start)
+            .map(|(other, _)| other.as_str());
+        match parent {
+            Some(parent) => {
+                format!("Define it first: `frame {name} = {parent} rotated … about z`.")
+            }
+            None => format!(
+                "Define it first: `frame {name}` (the first frame, without a rotation, is the inertial frame)."
+            ),
         }
     }
 
