@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 mod common;
-use common::lagrange;
+use common::{lagrange, stderr, stdout};
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
@@ -190,4 +190,54 @@ fn missing_values_and_bad_settings_are_clear_errors() {
     let o = lagrange(&["simulate", "examples/simple-pendulum.lag", "--rtol=-1"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(text(&o.stderr).contains("invalid setting `rtol`"));
+}
+
+#[test]
+fn a_runaway_pendulum_stops_with_exit_3_keeping_its_rows_and_saying_why() {
+    // Issue 14: `g = 1e300` used to write 4.7 GB of CSV in a minute.
+    let dir = std::env::temp_dir().join(format!("lagrange-runaway-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let (csv, summary) = (dir.join("run.csv"), dir.join("summary.json"));
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--set",
+        "g=1e300",
+        "--t-end",
+        "1",
+        "--out",
+        csv.to_str().expect("a path"),
+        "--summary",
+        summary.to_str().expect("a path"),
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(err.contains("step size collapsed"), "{err}");
+    let text = std::fs::read_to_string(&csv).expect("the rows so far");
+    let rows = text.lines().count() - 1;
+    assert!((1..1000).contains(&rows), "{rows} rows");
+    assert!(
+        text.lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("0.0,0.5,")),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&summary).expect("the summary"))
+            .expect("JSON");
+    assert_eq!(json["outcome"]["kind"], "failed", "{json}");
+    assert_eq!(json["outcome"]["failure"], "step_collapse", "{json}");
+    assert!(json["outcome"]["numbers"]["h"]
+        .as_f64()
+        .is_some_and(|h| h < 1e-12));
+    // A row limit from the command line: the same exit, the rows up to it.
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--max-rows",
+        "7",
+    ]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert_eq!(stdout(&o).lines().count(), 1 + 7);
+    assert!(stderr(&o).contains("--max-rows"), "{}", stderr(&o));
 }

@@ -36,6 +36,10 @@ pub struct SimulationOptions {
     /// Run on where a one-sided constraint would be lost (the equations then describe a
     /// motion that cannot happen).
     pub through_contact_loss: bool,
+    /// The most integration steps (default: [`Settings::new`]'s 10⁷).
+    pub max_steps: Option<u64>,
+    /// The most output rows (default: [`Settings::new`]'s 10⁶).
+    pub max_rows: Option<u64>,
 }
 
 /// How a run ended.
@@ -116,7 +120,13 @@ impl Ending {
                 // The failure reads "at t = …: why"; the time is a field of its own.
                 let text = failure.to_string();
                 let reason = text.split_once(": ").map_or(text.as_str(), |(_, r)| r);
-                json!({ "kind": "failed", "t": failure_time(failure).unwrap_or(t), "reason": reason })
+                let numbers: serde_json::Map<String, Value> = failure
+                    .numbers()
+                    .into_iter()
+                    .map(|(name, value)| (name.to_owned(), json!(value)))
+                    .collect();
+                json!({ "kind": "failed", "t": failure_time(failure).unwrap_or(t), "reason": reason,
+                        "failure": failure.kind(), "numbers": numbers })
             }
         }
     }
@@ -125,13 +135,7 @@ impl Ending {
 /// When a failure happened.
 #[must_use]
 pub fn failure_time(failure: &Failure) -> Option<f64> {
-    match *failure {
-        Failure::Rhs { t, .. }
-        | Failure::StepUnderflow { t, .. }
-        | Failure::NotConverged { t, .. }
-        | Failure::TooManySteps { t, .. } => Some(t),
-        _ => None,
-    }
+    Some(failure.time())
 }
 
 /// A recorded zero crossing.
@@ -256,6 +260,7 @@ impl Tally {
             "steps": outcome.stats.steps,
             "rejected_steps": outcome.stats.rejected,
             "rhs_evaluations": outcome.stats.evaluations,
+            "error_estimate": outcome.error_estimate,
             "wall_time_s": wall_time,
             "rows": self.rows,
             "final_energy_error": self.energy_error(),
@@ -321,6 +326,8 @@ impl Analysis {
             .output_step
             .or_else(|| from_model(|s| s.step.as_ref()));
         settings.step = options.step;
+        settings.max_steps = options.max_steps.unwrap_or(settings.max_steps);
+        settings.max_rows = options.max_rows.unwrap_or(settings.max_rows);
         settings
             .validate()
             .map_err(|e| self.locate_setting(e, options))?;

@@ -68,10 +68,16 @@ pub struct Settings {
     pub output_step: Option<f64>,
     /// The integration step: fixed for gauss, initial for dopri5 (`None`: chosen).
     pub step: Option<f64>,
+    /// The most integration steps; more stops the run (default: 10⁷).
+    pub max_steps: u64,
+    /// The most output rows (the initial row included); the run stops when one more is
+    /// due (default: 10⁶).
+    pub max_rows: u64,
 }
 
 impl Settings {
-    /// dopri5 from 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, a row every accepted step.
+    /// dopri5 from 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, a row every accepted step, at
+    /// most 10⁷ steps and 10⁶ rows.
     #[must_use]
     pub fn new(t_end: f64) -> Settings {
         Settings {
@@ -82,6 +88,8 @@ impl Settings {
             atol: 1e-10,
             output_step: None,
             step: None,
+            max_steps: IntegratorOptions::default().max_steps,
+            max_rows: IntegratorOptions::default().max_outputs,
         }
     }
 
@@ -116,6 +124,18 @@ impl Settings {
         }
         if let Some(s) = self.step {
             check_setting("integration step", s, positive, "must be positive")?;
+        }
+        if self.max_steps == 0 {
+            return Err(SimulationError::InvalidSetting {
+                setting: "step limit",
+                reason: "0 must be at least 1".to_owned(),
+            });
+        }
+        if self.max_rows == 0 {
+            return Err(SimulationError::InvalidSetting {
+                setting: "row limit",
+                reason: "0 must be at least 1".to_owned(),
+            });
         }
         Ok(())
     }
@@ -356,7 +376,8 @@ impl Simulation {
                 atol: settings.atol,
                 step: settings.step,
                 output_step: settings.output_step,
-                ..IntegratorOptions::default()
+                max_steps: settings.max_steps,
+                max_outputs: settings.max_rows,
             },
             initial,
             correction,

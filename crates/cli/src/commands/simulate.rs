@@ -43,6 +43,14 @@ pub struct SimulateArgs {
     /// Integration step: fixed for gauss, initial for dopri5 (default: chosen).
     #[arg(long)]
     pub step: Option<f64>,
+    /// Stop (exit 3, the rows so far written) after this many integration steps
+    /// (default: 10⁷).
+    #[arg(long, value_name = "N")]
+    pub max_steps: Option<u64>,
+    /// Stop (exit 3, the rows so far written) when one more output row than this is due
+    /// (default: 10⁶).
+    #[arg(long, value_name = "N")]
+    pub max_rows: Option<u64>,
     /// Override a parameter, an input, or an initial value for this run: `k=40`, `theta=0.3`,
     /// `theta_d=-1`; the value may be an expression of numbers and `pi` (`pi/4`). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -106,6 +114,8 @@ fn options(args: &SimulateArgs) -> SimulationOptions {
         stop_when: args.stop_when.clone(),
         record_when: args.record_when.clone(),
         through_contact_loss: args.through_contact_loss,
+        max_steps: args.max_steps,
+        max_rows: args.max_rows,
     }
 }
 
@@ -228,8 +238,11 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
 fn exit_of(ending: &Ending, t: f64) -> Exit {
     if let Some(sentence) = ending.sentence(t) {
         match ending {
-            Ending::Failed(_) => {
+            Ending::Failed(failure) => {
                 eprintln!("error: {sentence}; the rows computed up to then were written");
+                if let Some(hint) = hint(failure) {
+                    eprintln!("hint: {hint}");
+                }
             }
             Ending::ContactLost { .. } => {
                 eprintln!("{sentence}; run with --through-contact-loss to go on regardless");
@@ -241,6 +254,19 @@ fn exit_of(ending: &Ending, t: f64) -> Exit {
         Exit::RunFailed
     } else {
         Exit::Success
+    }
+}
+
+/// The flag that helps with a failure that a limit or the method decided.
+fn hint(failure: &lagrange::numeric::Failure) -> Option<&'static str> {
+    use lagrange::numeric::Failure as F;
+    match failure {
+        F::Stiff { .. } => Some("stiff: use --method sdirk"),
+        F::TooManySteps { .. } => Some("raise the limit with --max-steps N"),
+        F::TooManyOutputs { .. } => {
+            Some("raise the limit with --max-rows N, or write fewer rows with --output-step")
+        }
+        _ => None,
     }
 }
 

@@ -2,7 +2,7 @@
 //! controller, and Hairer's fourth-order continuous extension (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, §II.5 and the code DOPRI5).
 
-use super::{Driver, Failure, StopReason};
+use super::{Driver, Failure, StopReason, STIFF_H_LAMBDA, STIFF_PROJECTED_STEPS, STIFF_STEPS};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A21: f64 = 0.2;
@@ -64,16 +64,17 @@ fn steps(
     };
     let mut previous_error: f64 = 1e-4;
     let mut rejected_last = false;
+    let mut stiffness = Stiffness::default();
     loop {
         let t = driver.t;
         let span = (driver.t_end - t).abs();
         if h >= span {
             h = span;
         }
-        let min_step = 16.0 * f64::EPSILON * t.abs().max(1e-300);
-        if h < min_step {
-            return Err(Failure::StepUnderflow { t, h });
+        if let Some(failure) = driver.too_small(t, h) {
+            return Err(failure);
         }
+        let (min_step, _) = driver.step_floor(t);
         let hs = h * direction;
         // Stages 2…7; stage 7 is evaluated at the new point and reused as stage 1 (FSAL).
         let stages: [&[(usize, f64)]; 6] = [
@@ -101,9 +102,10 @@ fn steps(
         let err = match failed {
             // A failed evaluation inside the step (NaN, a singular matrix met on the way) is
             // treated as a rejection with a much smaller step; only at the step floor is it
-            // reported, with the time of the step.
+            // reported, with the time of the step (the next try, a tenth of this one,
+            // would be below the floor).
             Some(e) => {
-                if h <= 1e3 * min_step {
+                if h <= 1e3 * min_step || 0.1 * h < min_step {
                     return Err(match e {
                         Failure::Rhs { error, .. } => Failure::Rhs { t, error },
                         other => other,
@@ -138,6 +140,20 @@ fn steps(
             };
             previous_error = err.max(1e-4);
             rejected_last = false;
+            // Stage 6 (`stage`, derivative k₆) and the new point (y₁, k₇) are both at
+            // t + h: their difference quotient estimates |λ| of the Jacobian.
+            if let Some(steps) = stiffness.observe(h, &k[6], &k[5], &y1, &stage) {
+                let remaining = (driver.t_end - t).abs() / h;
+                if remaining > STIFF_PROJECTED_STEPS {
+                    return Err(Failure::Stiff {
+                        t,
+                        h,
+                        h_lambda: stiffness.last,
+                        steps,
+                        remaining,
+                    });
+                }
+            }
             for i in 0..n {
                 let ydiff = y1[i] - driver.y[i];
                 let bspl = hs * k[0][i] - ydiff;
@@ -227,5 +243,45 @@ fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
     } else {
         (0.01 / d1.max(d2)).powf(0.2)
     };
-    Ok((100.0 * h0).min(h1).min(span).max(1e-12))
+    // Not below the collapse floor: a guess that small is for the controller to shrink to.
+    let floor = 10.0 * driver.step_floor(driver.t).0;
+    Ok((100.0 * h0).min(h1).min(span).max(1e-12).max(floor))
+}
+
+/// Hairer's stiffness test (the code DOPRI5): `h·|λ| ≈ h‖k₇ − k₆‖ / ‖y₁ − Y₆‖` at the step
+/// boundary of the stability region, many steps in a row, means the step is held down by
+/// stability: the problem is stiff for this method.
+#[derive(Debug, Default)]
+struct Stiffness {
+    /// Consecutive steps near the boundary.
+    stiff: u32,
+    /// Consecutive steps away from it since the last one near it.
+    calm: u32,
+    /// The last estimate of `h·|λ|`.
+    last: f64,
+}
+
+impl Stiffness {
+    /// Takes the accepted step's estimate; returns the count when the run is judged stiff.
+    fn observe(&mut self, h: f64, k7: &[f64], k6: &[f64], y1: &[f64], y6: &[f64]) -> Option<u32> {
+        let numerator: f64 = k7.iter().zip(k6).map(|(a, b)| (a - b).powi(2)).sum();
+        let denominator: f64 = y1.iter().zip(y6).map(|(a, b)| (a - b).powi(2)).sum();
+        if denominator <= 0.0 || !numerator.is_finite() {
+            return None;
+        }
+        self.last = h * (numerator / denominator).sqrt();
+        if self.last > STIFF_H_LAMBDA {
+            self.calm = 0;
+            self.stiff += 1;
+            if self.stiff >= STIFF_STEPS {
+                return Some(self.stiff);
+            }
+        } else {
+            self.calm += 1;
+            if self.calm >= 6 {
+                self.stiff = 0;
+            }
+        }
+        None
+    }
 }

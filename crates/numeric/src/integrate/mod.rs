@@ -15,6 +15,7 @@
 
 mod dopri5;
 mod gauss;
+pub use gauss::PILOT_STEPS;
 mod sdirk;
 
 use std::fmt;
@@ -87,7 +88,10 @@ pub struct Crossing<'a> {
 pub enum Method {
     /// Dormand–Prince 5(4), adaptive, dense output (default).
     Dopri5,
-    /// Gauss–Legendre, 3 stages (order 6), fixed step, symplectic.
+    /// Gauss–Legendre, 3 stages (order 6), fixed step, symplectic. Without a step given, the
+    /// step is chosen by a pilot run over the first [`PILOT_STEPS`] steps against one of half
+    /// the step, so that the error extrapolated to the end is within the tolerances; the same
+    /// measure is the run's [`Outcome::error_estimate`].
     Gauss,
     /// L-stable SDIRK of order 2, adaptive, Newton with a finite-difference Jacobian: stiff
     /// systems.
@@ -112,13 +116,36 @@ pub struct IntegratorOptions {
     /// Absolute tolerance (default: 1e-10).
     pub atol: f64,
     /// The step: fixed for Gauss–Legendre, initial for adaptive methods (default: chosen from
-    /// the tolerances, and for Gauss–Legendre 1/100 of the output step or of the span).
+    /// the tolerances; for Gauss–Legendre by a pilot run, see [`Method::Gauss`]).
     pub step: Option<f64>,
     /// Time between outputs; `None` reports every accepted step (default: `None`).
     pub output_step: Option<f64>,
-    /// The most steps before giving up (default: 10⁸).
+    /// The most accepted steps before the run stops with [`Failure::TooManySteps`]
+    /// (default: 10⁷).
     pub max_steps: u64,
+    /// The most observer calls (output rows) before the run stops with
+    /// [`Failure::TooManyOutputs`] (default: 10⁶); the rows up to the limit are reported.
+    pub max_outputs: u64,
 }
+
+/// An adaptive step below this fraction of the whole time span `|t_end − t₀|` ends the run
+/// with [`Failure::StepCollapse`]: at that size the span would take more than 10¹² steps, so
+/// the solution is running away (or the problem is stiff), and going on only fills the disk.
+pub const STEP_COLLAPSE_FRACTION: f64 = 1e-12;
+
+/// Hairer's stiffness test for Dormand–Prince: `h·|λ|` estimated from the last two stages
+/// above this value (near the boundary of the stability region, about 3.3 on the negative
+/// real axis) counts as a step limited by stability rather than accuracy.
+pub const STIFF_H_LAMBDA: f64 = 3.25;
+
+/// This many consecutive accepted steps limited by stability ([`STIFF_H_LAMBDA`]) end an
+/// explicit run with [`Failure::Stiff`] — when the rest of the span would take more than
+/// [`STIFF_PROJECTED_STEPS`] steps at that size (a mildly stiff run that finishes soon is
+/// left to finish).
+pub const STIFF_STEPS: u32 = 15;
+
+/// See [`STIFF_STEPS`].
+pub const STIFF_PROJECTED_STEPS: f64 = 1e5;
 
 impl Default for IntegratorOptions {
     fn default() -> Self {
@@ -127,7 +154,8 @@ impl Default for IntegratorOptions {
             atol: 1e-10,
             step: None,
             output_step: None,
-            max_steps: 100_000_000,
+            max_steps: 10_000_000,
+            max_outputs: 1_000_000,
         }
     }
 }
@@ -172,13 +200,101 @@ pub enum Failure {
         h: f64,
     },
     /// The step limit was reached.
-    #[error("at t = {t}: the limit of {steps} steps was reached")]
+    #[error("at t = {t}: the limit of {steps} steps was reached; raise the step limit if the run needs more")]
     TooManySteps {
         /// When.
         t: f64,
         /// The limit.
         steps: u64,
     },
+    /// The output limit was reached: the next row (at `t`) would be one more than `rows`.
+    #[error("at t = {t}: the limit of {rows} output rows was reached; raise the row limit or write a row every output step")]
+    TooManyOutputs {
+        /// When the next row was due.
+        t: f64,
+        /// The limit (rows written).
+        rows: u64,
+    },
+    /// The adaptive step fell below [`STEP_COLLAPSE_FRACTION`] of the time span.
+    #[error("at t = {t}: the step size collapsed to h = {h:e}, {fraction:e} of the time span {span}; the solution runs away (values too large?) or the problem is stiff")]
+    StepCollapse {
+        /// When.
+        t: f64,
+        /// The step size.
+        h: f64,
+        /// The whole time span `|t_end − t₀|`.
+        span: f64,
+        /// `h / span`.
+        fraction: f64,
+    },
+    /// The explicit method's step was limited by stability, not accuracy, for
+    /// [`STIFF_STEPS`] consecutive steps (Hairer's test: `h·|λ| > `[`STIFF_H_LAMBDA`]), and
+    /// the rest of the span would take more than [`STIFF_PROJECTED_STEPS`] such steps.
+    #[error("at t = {t}: the problem is stiff (h·|λ| ≈ {h_lambda:.2} at h = {h:e} for {steps} steps in a row; the rest of the span would take {remaining:.2e} steps); use the implicit method sdirk")]
+    Stiff {
+        /// When.
+        t: f64,
+        /// The step size.
+        h: f64,
+        /// The last estimate of `h·|λ|`.
+        h_lambda: f64,
+        /// Consecutive stability-limited steps.
+        steps: u32,
+        /// The steps the rest of the span would take at `h`.
+        remaining: f64,
+    },
+}
+
+impl Failure {
+    /// When it happened.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        match *self {
+            Failure::Rhs { t, .. }
+            | Failure::StepUnderflow { t, .. }
+            | Failure::NotConverged { t, .. }
+            | Failure::TooManySteps { t, .. }
+            | Failure::TooManyOutputs { t, .. }
+            | Failure::StepCollapse { t, .. }
+            | Failure::Stiff { t, .. } => t,
+        }
+    }
+
+    /// A short name for machine-readable output: `rhs`, `step_underflow`, `not_converged`,
+    /// `too_many_steps`, `too_many_outputs`, `step_collapse`, `stiff`.
+    #[must_use]
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Failure::Rhs { .. } => "rhs",
+            Failure::StepUnderflow { .. } => "step_underflow",
+            Failure::NotConverged { .. } => "not_converged",
+            Failure::TooManySteps { .. } => "too_many_steps",
+            Failure::TooManyOutputs { .. } => "too_many_outputs",
+            Failure::StepCollapse { .. } => "step_collapse",
+            Failure::Stiff { .. } => "stiff",
+        }
+    }
+
+    /// The numbers that decided it, by name (the time is [`Failure::time`]).
+    #[must_use]
+    pub fn numbers(&self) -> Vec<(&'static str, f64)> {
+        match *self {
+            Failure::Rhs { .. } => Vec::new(),
+            Failure::StepUnderflow { h, .. } | Failure::NotConverged { h, .. } => vec![("h", h)],
+            Failure::TooManySteps { steps, .. } => vec![("steps", steps as f64)],
+            Failure::TooManyOutputs { rows, .. } => vec![("rows", rows as f64)],
+            Failure::StepCollapse {
+                h, span, fraction, ..
+            } => vec![("h", h), ("span", span), ("fraction", fraction)],
+            Failure::Stiff {
+                h, h_lambda, steps, ..
+            } => vec![
+                ("h", h),
+                ("h_lambda", h_lambda),
+                ("steps", f64::from(steps)),
+            ],
+        }
+    }
 }
 
 /// Why a run stopped.
@@ -207,6 +323,10 @@ pub struct Outcome {
     pub t: f64,
     /// Work done.
     pub stats: Stats,
+    /// An estimate of the largest error of a state component at the end, where the method
+    /// makes one (gauss: from its pilot runs, see [`Method::Gauss`]); `None` for the adaptive
+    /// methods, whose tolerances bound the local error of each step only.
+    pub error_estimate: Option<f64>,
 }
 
 /// Integrates `system` from `(t0, y0)` to `t_end` (which may be below `t0`), calling
@@ -247,7 +367,16 @@ pub fn integrate_with_crossings(
     on_crossing: &mut dyn FnMut(Crossing<'_>),
 ) -> Outcome {
     let mut driver = Driver::new(system, t0, y0, t_end, options, on_crossing);
+    if driver.options.max_outputs == 0 {
+        return Outcome {
+            stop: StopReason::Failed(Failure::TooManyOutputs { t: t0, rows: 0 }),
+            t: t0,
+            stats: driver.stats,
+            error_estimate: None,
+        };
+    }
     observer(t0, y0);
+    driver.outputs = 1;
     let stop = match method {
         Method::Dopri5 => dopri5::run(&mut driver, observer),
         Method::Gauss => gauss::run(&mut driver, observer),
@@ -257,6 +386,7 @@ pub fn integrate_with_crossings(
         stop,
         t: driver.t,
         stats: driver.stats,
+        error_estimate: driver.error_estimate,
     }
 }
 
@@ -269,8 +399,12 @@ pub(crate) struct Driver<'s> {
     pub(crate) direction: f64,
     pub(crate) options: IntegratorOptions,
     pub(crate) stats: Stats,
+    /// See [`Outcome::error_estimate`].
+    pub(crate) error_estimate: Option<f64>,
     next_output: Option<f64>,
     output_index: u64,
+    /// Observer calls so far (bounded by `max_outputs`).
+    outputs: u64,
     t0: f64,
     events_before: Vec<f64>,
     events_after: Vec<f64>,
@@ -308,8 +442,10 @@ impl<'s> Driver<'s> {
             direction,
             options: *options,
             stats: Stats::default(),
+            error_estimate: None,
             next_output: output_step.map(|s| t0 + direction * s),
             output_index: 1,
+            outputs: 0,
             t0,
             events_before,
             events_after: vec![0.0; events],
@@ -396,8 +532,12 @@ impl<'s> Driver<'s> {
                     if !inside {
                         break;
                     }
+                    if let Some(stop) = self.no_room(to) {
+                        return Some(stop);
+                    }
                     interpolate(to, &mut self.scratch);
                     observer(to, &self.scratch);
+                    self.outputs += 1;
                     self.output_index += 1;
                     self.next_output =
                         Some(self.t0 + self.direction * step * self.output_index as f64);
@@ -405,21 +545,35 @@ impl<'s> Driver<'s> {
             }
             _ => {
                 if stop_event.is_none() && t1 != self.t_end {
+                    if let Some(stop) = self.no_room(t1) {
+                        return Some(stop);
+                    }
                     observer(t1, y1);
+                    self.outputs += 1;
                 }
             }
         }
         if let Some((index, t)) = stop_event {
+            if let Some(stop) = self.no_room(t) {
+                return Some(stop);
+            }
             interpolate(t, &mut self.scratch);
             observer(t, &self.scratch);
+            self.outputs += 1;
             self.t = t;
             self.y.copy_from_slice(&self.scratch);
             return Some(StopReason::Event { index, t });
+        }
+        if t1 == self.t_end {
+            if let Some(stop) = self.no_room(t1) {
+                return Some(stop);
+            }
         }
         self.t = t1;
         self.y.copy_from_slice(y1);
         if t1 == self.t_end {
             observer(t1, y1);
+            self.outputs += 1;
             return Some(StopReason::Finished);
         }
         if self.stats.steps >= self.options.max_steps {
@@ -429,6 +583,46 @@ impl<'s> Driver<'s> {
             }));
         }
         None
+    }
+
+    /// The stop when the output limit is reached and a row is due at `t`.
+    fn no_room(&self, t: f64) -> Option<StopReason> {
+        (self.outputs >= self.options.max_outputs).then_some(StopReason::Failed(
+            Failure::TooManyOutputs {
+                t,
+                rows: self.options.max_outputs,
+            },
+        ))
+    }
+
+    /// The smallest adaptive step allowed at time `t`, and whether a step below it is a
+    /// collapse relative to the span (else an underflow of `t`'s precision).
+    pub(crate) fn step_floor(&self, t: f64) -> (f64, bool) {
+        let underflow = 16.0 * f64::EPSILON * t.abs().max(1e-300);
+        let collapse = STEP_COLLAPSE_FRACTION * (self.t_end - self.t0).abs();
+        if collapse > underflow {
+            (collapse, true)
+        } else {
+            (underflow, false)
+        }
+    }
+
+    /// The failure of a step `h` below the floor at `t` ([`Driver::step_floor`]).
+    pub(crate) fn too_small(&self, t: f64, h: f64) -> Option<Failure> {
+        let (floor, collapse) = self.step_floor(t);
+        if h >= floor {
+            None
+        } else if collapse {
+            let span = (self.t_end - self.t0).abs();
+            Some(Failure::StepCollapse {
+                t,
+                h,
+                span,
+                fraction: h / span,
+            })
+        } else {
+            Some(Failure::StepUnderflow { t, h })
+        }
     }
 
     /// Where event `k`, `g0` at the step's start and of the other sign (or zero) at `t1`,

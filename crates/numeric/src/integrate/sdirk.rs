@@ -62,9 +62,8 @@ fn steps(
         if last {
             h = remaining;
         }
-        let min_step = 16.0 * f64::EPSILON * t.abs().max(1e-300);
-        if h < min_step {
-            return Err(Failure::StepUnderflow { t, h });
+        if let Some(failure) = driver.too_small(t, h) {
+            return Err(failure);
         }
         let hs = h * driver.direction;
         if !jacobian_fresh {

@@ -257,3 +257,268 @@ fn sdirk_takes_large_steps_on_a_stiff_problem_and_stays_accurate() {
         explicit.steps
     );
 }
+
+/// `x'' = −ω² x` with a huge `ω` (the pendulum with `g = 1e300` near its bottom).
+struct Fast {
+    omega2: f64,
+}
+
+impl OdeSystem for Fast {
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = y[1];
+        dy[1] = -self.omega2 * y[0].sin();
+        Ok(())
+    }
+}
+
+/// Prothero–Robinson `y' = −λ (y − cos t) − sin t`, exact `y = cos t`: stiff for large λ.
+struct ProtheroRobinson {
+    lambda: f64,
+}
+
+impl OdeSystem for ProtheroRobinson {
+    fn dimension(&self) -> usize {
+        1
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = -self.lambda * (y[0] - t.cos()) - t.sin();
+        Ok(())
+    }
+}
+
+fn count_rows(
+    system: &mut dyn OdeSystem,
+    method: Method,
+    y0: &[f64],
+    t_end: f64,
+    options: &IntegratorOptions,
+) -> (Outcome, u64) {
+    let mut rows = 0;
+    let outcome = integrate(system, method, 0.0, y0, t_end, options, &mut |_, _| {
+        rows += 1
+    });
+    (outcome, rows)
+}
+
+#[test]
+fn a_runaway_stops_at_once_with_the_collapsed_step() {
+    // g = 1e300: the step needed is ~1e-150 of the span; the run stops on the first step
+    // instead of writing rows for ever.
+    let options = IntegratorOptions::default();
+    for method in [Method::Dopri5, Method::Sdirk, Method::Gauss] {
+        let (outcome, rows) = count_rows(
+            &mut Fast { omega2: 1e300 },
+            method,
+            &[0.5, 0.0],
+            1.0,
+            &options,
+        );
+        match outcome.stop {
+            StopReason::Failed(Failure::StepCollapse {
+                h, span, fraction, ..
+            }) => {
+                assert_eq!(span, 1.0);
+                assert!(h < STEP_COLLAPSE_FRACTION * span, "{method}: h = {h}");
+                assert_eq!(fraction, h / span);
+            }
+            other => panic!("{method}: {other:?}"),
+        }
+        assert!((1..1000).contains(&rows), "{method}: {rows} rows");
+        assert!(
+            outcome.stats.steps < 10_000,
+            "{method}: {:?}",
+            outcome.stats
+        );
+    }
+}
+
+#[test]
+fn a_stiff_problem_stops_the_explicit_method_and_not_the_implicit_one() {
+    let options = IntegratorOptions {
+        rtol: 1e-6,
+        atol: 1e-8,
+        ..IntegratorOptions::default()
+    };
+    let (outcome, _) = count_rows(
+        &mut ProtheroRobinson { lambda: 1e6 },
+        Method::Dopri5,
+        &[1.0],
+        10.0,
+        &options,
+    );
+    match outcome.stop {
+        StopReason::Failed(Failure::Stiff {
+            t,
+            h,
+            h_lambda,
+            steps,
+            remaining,
+        }) => {
+            assert!(remaining > STIFF_PROJECTED_STEPS, "{remaining}");
+            assert!(h_lambda > STIFF_H_LAMBDA, "{h_lambda}");
+            assert_eq!(steps, STIFF_STEPS);
+            // Stability of Dormand–Prince on the real axis ends near h·λ = 3.3.
+            assert!(h * 1e6 < 4.0 && h * 1e6 > 1.0, "h = {h}");
+            assert!(t > 0.0 && t < 1e-2, "t = {t}");
+            assert_eq!(outcome.t, t);
+        }
+        other => panic!("{other:?}"),
+    }
+    // The same problem is routine for the L-stable method.
+    let (outcome, _) = count_rows(
+        &mut ProtheroRobinson { lambda: 1e6 },
+        Method::Sdirk,
+        &[1.0],
+        10.0,
+        &options,
+    );
+    assert_eq!(outcome.stop, StopReason::Finished);
+    assert!(outcome.stats.steps < 100_000, "{:?}", outcome.stats);
+}
+
+#[test]
+fn a_non_stiff_oscillation_is_not_called_stiff() {
+    // Loose and tight tolerances: accuracy, not stability, limits the step.
+    for rtol in [1e-3, 1e-6, 1e-12] {
+        let options = IntegratorOptions {
+            rtol,
+            atol: rtol * 1e-2,
+            ..IntegratorOptions::default()
+        };
+        let (outcome, _) = run(Method::Dopri5, options, false);
+        assert_eq!(outcome.stop, StopReason::Finished, "rtol {rtol}");
+    }
+}
+
+#[test]
+fn the_step_and_row_limits_stop_the_run_with_the_rows_so_far() {
+    let limited = |max_steps, max_outputs, output_step| IntegratorOptions {
+        max_steps,
+        max_outputs,
+        output_step,
+        ..IntegratorOptions::default()
+    };
+    // A row every step: 50 rows, then the 51st is due and the run stops.
+    let (outcome, rows) = count_rows(
+        &mut Oscillator { events: false },
+        Method::Dopri5,
+        &[1.0, 0.0],
+        1e4,
+        &limited(1_000_000, 50, None),
+    );
+    assert_eq!(rows, 50);
+    match outcome.stop {
+        StopReason::Failed(f @ Failure::TooManyOutputs { t, rows: 50 }) => {
+            assert!(t > 0.0 && t < 1e4);
+            assert_eq!(f.time(), t);
+            assert_eq!(f.kind(), "too_many_outputs");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Many rows inside one step (a fine output step) are limited as well.
+    for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+        let (outcome, rows) = count_rows(
+            &mut Oscillator { events: false },
+            method,
+            &[1.0, 0.0],
+            10.0,
+            &limited(1_000_000, 200, Some(1e-3)),
+        );
+        assert_eq!(rows, 200, "{method}");
+        assert!(
+            matches!(
+                outcome.stop,
+                StopReason::Failed(Failure::TooManyOutputs { rows: 200, .. })
+            ),
+            "{method}: {:?}",
+            outcome.stop
+        );
+    }
+    // Exactly as many rows as the limit allows: finished.
+    let (outcome, rows) = count_rows(
+        &mut Oscillator { events: false },
+        Method::Dopri5,
+        &[1.0, 0.0],
+        1.0,
+        &limited(1_000_000, 11, Some(0.1)),
+    );
+    assert_eq!((outcome.stop, rows), (StopReason::Finished, 11));
+    // The step limit.
+    let (outcome, _) = count_rows(
+        &mut Oscillator { events: false },
+        Method::Dopri5,
+        &[1.0, 0.0],
+        1e4,
+        &limited(100, 1_000_000, None),
+    );
+    assert!(matches!(
+        outcome.stop,
+        StopReason::Failed(Failure::TooManySteps { steps: 100, .. })
+    ));
+    assert_eq!(outcome.stats.steps, 100);
+}
+
+#[test]
+fn gauss_chooses_its_step_from_the_dynamics_and_its_estimate_bounds_the_error() {
+    // The same oscillator at ω = 1 and ω = 50: the step must follow the frequency, not the
+    // span, and the estimate must bound the error against the exact solution.
+    for omega in [1.0_f64, 50.0] {
+        let mut system = Fast {
+            omega2: omega * omega,
+        };
+        let y0 = [0.1, 0.0];
+        let mut last = (0.0, vec![]);
+        let options = IntegratorOptions::default();
+        let outcome = integrate(
+            &mut system,
+            Method::Gauss,
+            0.0,
+            &y0,
+            20.0,
+            &options,
+            &mut |t, y| {
+                last = (t, y.to_vec());
+            },
+        );
+        assert_eq!(outcome.stop, StopReason::Finished);
+        assert_eq!(last.0, 20.0);
+        let estimate = outcome.error_estimate.expect("gauss estimates its error");
+        // The reference: dopri5 at tight tolerances (the pendulum is nonlinear).
+        let mut reference = vec![];
+        let tight = IntegratorOptions {
+            rtol: 1e-13,
+            atol: 1e-15,
+            ..IntegratorOptions::default()
+        };
+        integrate(
+            &mut system,
+            Method::Dopri5,
+            0.0,
+            &y0,
+            20.0,
+            &tight,
+            &mut |_, y| {
+                reference = y.to_vec();
+            },
+        );
+        let error = (last.1[0] - reference[0])
+            .abs()
+            .max((last.1[1] - reference[1]).abs());
+        assert!(
+            error <= estimate,
+            "ω = {omega}: error {error:e} > estimate {estimate:e}"
+        );
+        // Within the tolerances (scale 1e-10 + 1e-8·|y|), not far below them.
+        assert!(estimate < 1e-8, "ω = {omega}: estimate {estimate:e}");
+        assert!(error < 1e-8, "ω = {omega}: error {error:e}");
+        // The step follows the frequency: a sensible number of steps per period at both.
+        let per_period = outcome.stats.steps as f64 / (20.0 * omega / std::f64::consts::TAU);
+        assert!(
+            (5.0..500.0).contains(&per_period),
+            "ω = {omega}: {per_period} steps per period"
+        );
+    }
+}
