@@ -36,7 +36,8 @@ impl Analysis {
     ///
     /// # Errors
     /// As [`Analysis::equations`]: without equations of motion there is no solution. The
-    /// later parts say in the document why they are missing.
+    /// later parts (equilibria, simulation, reactions) say in the document why they are
+    /// missing.
     pub fn solution(&self, figures: Option<&Figures>) -> Result<Solution, Error> {
         let equations = self.equations()?;
         let system = self.system();
@@ -70,7 +71,7 @@ impl Analysis {
             }
         }
         // Before the simulation, whose one-sided contacts then reuse them.
-        let reactions = self.reactions()?;
+        let reactions = self.reactions();
         let has_statement = self
             .source()
             .is_some_and(|s| s.model.simulation().is_some());
@@ -78,15 +79,24 @@ impl Analysis {
             document.sections.push(self.simulation_part(figures));
         }
         let mut disagree = false;
-        if let Some(reactions) = reactions {
-            disagree = reactions.disagree();
-            document
-                .sections
-                .push(report::solution_reactions::reactions_section(
-                    &reactions.reactions,
-                    &reactions.unilateral,
-                    &notation,
-                ));
+        match reactions {
+            Ok(Some(reactions)) => {
+                disagree = reactions.disagree();
+                document
+                    .sections
+                    .push(report::solution_reactions::reactions_section(
+                        &reactions.reactions,
+                        &reactions.unilateral,
+                        &notation,
+                    ));
+            }
+            Ok(None) => {}
+            // The rest of the solution stands; the section says why the reactions are missing.
+            Err(why) => {
+                let mut section = Section::new("Constraint reactions", 2);
+                section.paragraph(format!("Not derived: {why}."));
+                document.sections.push(section);
+            }
         }
         Ok(Solution { document, disagree })
     }

@@ -166,3 +166,25 @@ simulate to 2 atol tol
     let error = analysis.simulate(&options).unwrap_err();
     assert!(matches!(error, lagrange::Error::Simulation(_)), "{error}");
 }
+
+#[test]
+fn reactions_too_large_for_a_closed_form_are_refused_and_the_solution_stands() {
+    let analysis = Analysis::from_file(&example("four-bar.lag")).unwrap();
+    let error = analysis.reactions().unwrap_err();
+    assert!(
+        matches!(
+            error,
+            lagrange::Error::Reactions(lagrange::mechanics::ReactionError::TooLarge { .. })
+        ),
+        "{error}"
+    );
+    assert_eq!(error.kind(), lagrange::ErrorKind::Mechanics);
+    // The solution keeps everything else and says why the reactions are missing.
+    let solution = analysis.solution(None).unwrap();
+    let text = solution.document.to_text();
+    assert!(
+        text.contains("Not derived: the reactions are too large"),
+        "{text}"
+    );
+    assert_eq!(analysis.derivations(), 1);
+}
