@@ -201,24 +201,7 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
             lagrange::csv::crossings_line(&args.record_when, &tally.crossings)
         );
     }
-    if let Some(mut w) = events_writer {
-        let columns = simulation.columns();
-        let text = lagrange::csv::events(
-            &columns[..columns.len() - 2],
-            &args.record_when,
-            &tally.crossings,
-        );
-        w.write_all(text.as_bytes())
-            .and_then(|()| w.flush())
-            .map_err(|e| output_error("the events", &e))?;
-    }
-    if let Some(mut w) = summary_writer {
-        let model = args.model.display().to_string();
-        let text = super::eom::json(&tally.summary(&model, &simulation, outcome, elapsed));
-        writeln!(w, "{text}")
-            .and_then(|()| w.flush())
-            .map_err(|e| output_error("the summary", &e))?;
-    }
+    write_extras(args, &simulation, &run, events_writer, summary_writer)?;
     for path in [&args.out, &args.events, &args.summary]
         .into_iter()
         .flatten()
@@ -232,6 +215,37 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
         eprintln!("wrote {}", path.display());
     }
     Ok(exit_of(&Ending::of(&simulation, outcome), outcome.t))
+}
+
+/// `--events` and `--summary`, into the files created before the run.
+fn write_extras(
+    args: &SimulateArgs,
+    simulation: &lagrange::simulation::Simulation,
+    run: &lagrange::Streamed,
+    events: Option<std::io::BufWriter<std::fs::File>>,
+    summary: Option<std::io::BufWriter<std::fs::File>>,
+) -> Result<(), Failure> {
+    if let Some(mut w) = events {
+        let columns = simulation.columns();
+        let text = lagrange::csv::events(
+            &columns[..columns.len() - 2],
+            &args.record_when,
+            &run.tally.crossings,
+        );
+        w.write_all(text.as_bytes())
+            .and_then(|()| w.flush())
+            .map_err(|e| output_error("the events", &e))?;
+    }
+    if let Some(mut w) = summary {
+        let model = args.model.display().to_string();
+        let json = run
+            .tally
+            .summary(&model, simulation, &run.outcome, run.wall_time);
+        writeln!(w, "{}", super::eom::json(&json))
+            .and_then(|()| w.flush())
+            .map_err(|e| output_error("the summary", &e))?;
+    }
+    Ok(())
 }
 
 /// The exit code of a run's ending, said on stderr when it stopped early.
