@@ -62,26 +62,8 @@ impl Failure {
             ErrorKind::Internal => Exit::Internal,
             _ => Exit::Mechanics,
         };
-        let message = match &error {
-            Error::Model(errors) => {
-                let options =
-                    model::RenderOptions::default().with_color(std::io::stderr().is_terminal());
-                let count = errors.error_count();
-                format!(
-                    "{}{file}: {count} error{} found",
-                    errors.render(&file, options),
-                    if count == 1 { "" } else { "s" }
-                )
-            }
-            Error::Located {
-                message,
-                line,
-                column,
-                ..
-            } => format!("error: {file}:{line}:{column}: {message}"),
-            Error::Read { .. } => format!("error: {error}"),
-            _ => format!("error: {file}: {error}"),
-        };
+        let color = std::io::stderr().is_terminal();
+        let message = error.render(&file, model::RenderOptions::default().with_color(color));
         Failure { code, message }
     }
 

@@ -130,6 +130,17 @@ impl Analysis {
         Ok(Analysis::new(system, Some(Source { model, text, path })))
     }
 
+    /// The model's warnings drawn under their source lines (empty without any).
+    #[must_use]
+    pub fn warnings(&self, file: &str, options: model::RenderOptions) -> String {
+        match &self.source {
+            Some(source) if !source.model.warnings().is_empty() => {
+                model::render(source.model.warnings(), file, &source.text, options)
+            }
+            _ => String::new(),
+        }
+    }
+
     /// The system.
     #[must_use]
     pub fn system(&self) -> &System {

@@ -114,6 +114,31 @@ pub enum Error {
 }
 
 impl Error {
+    /// The error as a person reads it about the model file `file`: diagnostics drawn under
+    /// their source lines (with a count), a located error as `file:line:column: …`, anything
+    /// else as `file: …`; every line but the diagnostics' starts with `error: `.
+    #[must_use]
+    pub fn render(&self, file: &str, options: model::RenderOptions) -> String {
+        match self {
+            Error::Model(errors) => {
+                let count = errors.error_count();
+                format!(
+                    "{}{file}: {count} error{} found",
+                    errors.render(file, options),
+                    if count == 1 { "" } else { "s" }
+                )
+            }
+            Error::Located {
+                message,
+                line,
+                column,
+                ..
+            } => format!("error: {file}:{line}:{column}: {message}"),
+            Error::Read { .. } => format!("error: {self}"),
+            _ => format!("error: {file}: {self}"),
+        }
+    }
+
     /// Whose mistake this is.
     #[must_use]
     pub fn kind(&self) -> ErrorKind {

@@ -53,19 +53,10 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
 /// Reads the model file, prints its warnings, and applies `--set NAME=VALUE` in order.
 pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
     let mut analysis = Analysis::from_file(path).map_err(|e| Failure::of(e, path))?;
-    if let Some(source) = analysis.source() {
-        if !source.model.warnings().is_empty() {
-            eprint!(
-                "{}",
-                model::render(
-                    source.model.warnings(),
-                    &path.display().to_string(),
-                    &source.text,
-                    render_options()
-                )
-            );
-        }
-    }
+    eprint!(
+        "{}",
+        analysis.warnings(&path.display().to_string(), render_options())
+    );
     for item in set {
         let assignment =
             lagrange::parse_assignment(item).map_err(|e| Failure::input(format!("--set {e}")))?;
