@@ -74,99 +74,34 @@ impl Compiled {
         stopping_events: usize,
         canonical: bool,
     ) -> Result<Compiled, TapeError> {
-        let names = equations.coordinates();
-        let n = names.len();
+        let n = equations.coordinates().len();
         let m = equations.constraint_names().len();
-        let mut inputs: Vec<Symbol> = Vec::with_capacity(2 * n + 1 + parameters.len());
-        let mut values = vec![0.0; 2 * n + 1];
-        inputs.extend(names.iter().filter_map(|q| Expr::coordinate(q).as_symbol()));
-        inputs.extend(names.iter().filter_map(|q| Expr::rate(q, 1).as_symbol()));
-        inputs.extend(Expr::time().as_symbol());
-        for (name, value) in parameters {
-            if let Some(s) = Expr::symbol(name).as_symbol() {
-                inputs.push(s);
-                values.push(*value);
-            }
-        }
+        let (inputs, values) = input_layout(equations.coordinates(), parameters);
+        let fold = Folder::new(parameters, timed_inputs);
 
-        // The parameters are numbers for the whole run, so they are folded in before
-        // compiling: in normal form the terms that differ only in parameters (Σ m_k l_i l_j
-        // cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about
-        // n-fold. Values enter as floats, never as exact integers: the normal form expands
-        // trigonometry of integer multiples, and `cos(ω t)` with ω = 200 would become a
-        // degree-200 polynomial in cos t, numerically useless.
-        let constants: Vec<(Expr, Expr)> = parameters
-            .iter()
-            .map(|(name, value)| (Expr::symbol(name), Expr::float(*value)))
-            .collect();
-        // Inputs given as functions of time go in first: their expressions may hold parameters.
-        let timed: Vec<(Expr, Expr)> = timed_inputs
-            .iter()
-            .map(|(name, value)| (Expr::symbol(name), *value))
-            .collect();
-        let fold = |e: Expr| e.subs(&timed).subs(&constants).normal();
-        let folded = |es: &[Expr]| es.iter().map(|e| fold(*e)).collect::<Vec<_>>();
-
-        let mut dynamic_outputs: Vec<Expr> = folded(&equations.mass_matrix().concat());
-        dynamic_outputs.extend(folded(equations.forcing()));
-        dynamic_outputs.extend(folded(&equations.constraint_matrix().concat()));
-        dynamic_outputs.extend(folded(equations.constraint_rhs()));
+        let mut dynamic_outputs: Vec<Expr> = fold.all(&equations.mass_matrix().concat());
+        dynamic_outputs.extend(fold.all(equations.forcing()));
+        dynamic_outputs.extend(fold.all(&equations.constraint_matrix().concat()));
+        dynamic_outputs.extend(fold.all(equations.constraint_rhs()));
         let dynamics = Evaluator::new(&dynamic_outputs, &inputs)?;
 
-        let energy = equations
-            .first_integrals()
-            .iter()
-            .find(|f| f.coordinate.is_none())
-            .map_or_else(
-                || (equations.kinetic_energy() + equations.potential_energy()).normal(),
-                |f| f.value,
-            );
         let levels = constraint_levels(system, equations);
         let drift_known = levels.len() == m;
         let (holonomic, positions, velocities) = if drift_known {
-            let holonomic: Vec<usize> = levels
-                .iter()
-                .enumerate()
-                .filter(|(_, (phi, _))| phi.is_some())
-                .map(|(k, _)| k)
-                .collect();
-            let positions: Vec<Expr> = levels.iter().filter_map(|(phi, _)| *phi).collect();
-            let velocities: Vec<Expr> = levels.iter().map(|(_, c)| *c).collect();
-            (holonomic, positions, velocities)
+            split_levels(&levels)
         } else {
             (Vec::new(), Vec::new(), Vec::new())
         };
-        let mut monitor_outputs = vec![fold(energy)];
-        monitor_outputs.extend(folded(&positions));
-        monitor_outputs.extend(folded(&velocities));
+        let mut monitor_outputs = vec![fold.one(energy(equations))];
+        monitor_outputs.extend(fold.all(&positions));
+        monitor_outputs.extend(fold.all(&velocities));
         let monitor = Evaluator::new(&monitor_outputs, &inputs)?;
 
         let canonical = if canonical {
-            let lagrangian = equations.lagrangian();
-            let q: Vec<Option<Symbol>> = names
-                .iter()
-                .map(|x| Expr::coordinate(x).as_symbol())
-                .collect();
-            let qd: Vec<Option<Symbol>> =
-                names.iter().map(|x| Expr::rate(x, 1).as_symbol()).collect();
-            let at_rest: Vec<(Expr, Expr)> = names
-                .iter()
-                .map(|x| (Expr::rate(x, 1), Expr::zero()))
-                .collect();
-            let partial = |e: Expr, s: Option<Symbol>| s.map_or_else(Expr::zero, |s| e.diff(s));
-            let mut mass_momentum: Vec<Expr> = equations.mass_matrix().concat();
-            mass_momentum.extend(
-                qd.iter()
-                    .map(|s| partial(lagrangian, *s).subs(&at_rest).normal()),
-            );
-            let forces: Vec<Expr> = q
-                .iter()
-                .zip(equations.generalized_forces())
-                .map(|(s, force)| (partial(lagrangian, *s) + *force).normal())
-                .collect();
+            let (mass_momentum, forces) = hamilton_outputs(equations);
             Some((
-                Evaluator::new(&folded(&mass_momentum), &inputs)?,
-                Evaluator::new(&folded(&forces), &inputs)?,
+                Evaluator::new(&fold.all(&mass_momentum), &inputs)?,
+                Evaluator::new(&fold.all(&forces), &inputs)?,
             ))
         } else {
             None
@@ -174,7 +109,7 @@ impl Compiled {
         let events = if events.is_empty() {
             None
         } else {
-            Some(Evaluator::new(&folded(events), &inputs)?)
+            Some(Evaluator::new(&fold.all(events), &inputs)?)
         };
         Ok(Compiled {
             n,
@@ -219,6 +154,108 @@ impl Compiled {
 /// The constraints kept with multipliers, at position level (`Φ`, for holonomic rows) and at
 /// velocity level (`c`), rebuilt from the system the way `mechanics::derive` keeps them: in
 /// declaration order, eliminated coordinates substituted, rows that vanish dropped.
+/// The tapes' input layout `[q, q̇, t, parameters…]`, and the buffer with the parameters'
+/// values in place.
+fn input_layout(names: &[String], parameters: &[(String, f64)]) -> (Vec<Symbol>, Vec<f64>) {
+    let n = names.len();
+    let mut inputs: Vec<Symbol> = Vec::with_capacity(2 * n + 1 + parameters.len());
+    let mut values = vec![0.0; 2 * n + 1];
+    inputs.extend(names.iter().filter_map(|q| Expr::coordinate(q).as_symbol()));
+    inputs.extend(names.iter().filter_map(|q| Expr::rate(q, 1).as_symbol()));
+    inputs.extend(Expr::time().as_symbol());
+    for (name, value) in parameters {
+        if let Some(s) = Expr::symbol(name).as_symbol() {
+            inputs.push(s);
+            values.push(*value);
+        }
+    }
+    (inputs, values)
+}
+
+/// Folds the run's numbers into expressions before compiling. The parameters are numbers for
+/// the whole run: in normal form the terms that differ only in parameters (Σ m_k l_i l_j
+/// cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about n-fold.
+/// Values enter as floats, never as exact integers: the normal form would expand
+/// trigonometry of small integer multiples (`cos(ω t)` with an integer ω).
+struct Folder {
+    timed: Vec<(Expr, Expr)>,
+    constants: Vec<(Expr, Expr)>,
+}
+
+impl Folder {
+    fn new(parameters: &[(String, f64)], timed_inputs: &[(String, Expr)]) -> Folder {
+        Folder {
+            timed: timed_inputs
+                .iter()
+                .map(|(name, value)| (Expr::symbol(name), *value))
+                .collect(),
+            constants: parameters
+                .iter()
+                .map(|(name, value)| (Expr::symbol(name), Expr::float(*value)))
+                .collect(),
+        }
+    }
+
+    /// Inputs given as functions of time go in first: their expressions may hold parameters.
+    fn one(&self, e: Expr) -> Expr {
+        e.subs(&self.timed).subs(&self.constants).normal()
+    }
+
+    fn all(&self, es: &[Expr]) -> Vec<Expr> {
+        es.iter().map(|e| self.one(*e)).collect()
+    }
+}
+
+/// The energy monitored along a run: the conserved `h` when there is one, else `K + V`.
+fn energy(equations: &Equations) -> Expr {
+    equations
+        .first_integrals()
+        .iter()
+        .find(|f| f.coordinate.is_none())
+        .map_or_else(
+            || (equations.kinetic_energy() + equations.potential_energy()).normal(),
+            |f| f.value,
+        )
+}
+
+/// The holonomic rows' indices, their position-level and every row's velocity-level
+/// expressions.
+fn split_levels(levels: &[(Option<Expr>, Expr)]) -> (Vec<usize>, Vec<Expr>, Vec<Expr>) {
+    let holonomic = levels
+        .iter()
+        .enumerate()
+        .filter(|(_, (phi, _))| phi.is_some())
+        .map(|(k, _)| k)
+        .collect();
+    let positions = levels.iter().filter_map(|(phi, _)| *phi).collect();
+    let velocities = levels.iter().map(|(_, c)| *c).collect();
+    (holonomic, positions, velocities)
+}
+
+/// Hamilton's form for the symplectic method: `M` and `p₀ = ∂L/∂q̇ at q̇ = 0` (so that
+/// `p = M q̇ + p₀`), and `∂L/∂q + Q`.
+fn hamilton_outputs(equations: &Equations) -> (Vec<Expr>, Vec<Expr>) {
+    let names = equations.coordinates();
+    let lagrangian = equations.lagrangian();
+    let at_rest: Vec<(Expr, Expr)> = names
+        .iter()
+        .map(|x| (Expr::rate(x, 1), Expr::zero()))
+        .collect();
+    let partial = |e: Expr, s: Option<Symbol>| s.map_or_else(Expr::zero, |s| e.diff(s));
+    let mut mass_momentum: Vec<Expr> = equations.mass_matrix().concat();
+    mass_momentum.extend(names.iter().map(|x| {
+        partial(lagrangian, Expr::rate(x, 1).as_symbol())
+            .subs(&at_rest)
+            .normal()
+    }));
+    let forces = names
+        .iter()
+        .zip(equations.generalized_forces())
+        .map(|(x, force)| (partial(lagrangian, Expr::coordinate(x).as_symbol()) + *force).normal())
+        .collect();
+    (mass_momentum, forces)
+}
+
 fn constraint_levels(system: &System, equations: &Equations) -> Vec<(Option<Expr>, Expr)> {
     let mut pairs: Vec<Vec<(Expr, Expr)>> = Vec::new();
     for e in equations.eliminated() {
