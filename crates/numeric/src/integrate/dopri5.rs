@@ -76,29 +76,7 @@ fn steps(
         }
         let (min_step, _) = driver.step_floor(t);
         let hs = h * direction;
-        // Stages 2…7; stage 7 is evaluated at the new point and reused as stage 1 (FSAL).
-        let stages: [&[(usize, f64)]; 6] = [
-            &[(0, A21)],
-            &[(0, A31), (1, A32)],
-            &[(0, A41), (1, A42), (2, A43)],
-            &[(0, A51), (1, A52), (2, A53), (3, A54)],
-            &[(0, A61), (1, A62), (2, A63), (3, A64), (4, A65)],
-            &[(0, A71), (2, A73), (3, A74), (4, A75), (5, A76)],
-        ];
-        let mut failed = None;
-        for (s, row) in stages.iter().enumerate() {
-            let out = if s == 5 { &mut y1 } else { &mut stage };
-            for i in 0..n {
-                let acc: f64 = row.iter().map(|&(j, a)| a * k[j][i]).sum();
-                out[i] = driver.y[i] + hs * acc;
-            }
-            let ts = t + C[s + 1] * hs;
-            let input = if s == 5 { &y1 } else { &stage };
-            if let Err(e) = driver.rhs(ts, input, &mut k[s + 1]) {
-                failed = Some(e);
-                break;
-            }
-        }
+        let failed = stages(driver, &mut k, &mut stage, &mut y1, t, hs);
         let err = match failed {
             // A failed evaluation inside the step (NaN, a singular matrix met on the way) is
             // treated as a rejection with a much smaller step; only at the step floor is it
@@ -114,30 +92,14 @@ fn steps(
                 f64::INFINITY
             }
             None => {
-                for i in 0..n {
-                    error[i] = hs
-                        * (E1 * k[0][i]
-                            + E3 * k[2][i]
-                            + E4 * k[3][i]
-                            + E5 * k[4][i]
-                            + E6 * k[5][i]
-                            + E7 * k[6][i]);
+                for (i, e) in error.iter_mut().enumerate() {
+                    *e = hs * weighted(&k, [E1, 0.0, E3, E4, E5, E6, E7], i);
                 }
                 driver.error_norm(&driver.y, &y1, &error)
             }
         };
         if err <= 1.0 {
-            // PI controller with the exponents of Hairer's DOPRI5 (α = 0.2 − 0.75 β, β = 0.04).
-            let factor = if err == 0.0 {
-                10.0
-            } else {
-                (0.9 * err.powf(-0.17) * previous_error.powf(0.04)).clamp(0.2, 10.0)
-            };
-            let factor = if rejected_last {
-                factor.min(1.0)
-            } else {
-                factor
-            };
+            let factor = pi_factor(err, previous_error, rejected_last);
             previous_error = err.max(1e-4);
             rejected_last = false;
             // Stage 6 (`stage`, derivative k₆) and the new point (y₁, k₇) are both at
@@ -154,21 +116,7 @@ fn steps(
                     });
                 }
             }
-            for i in 0..n {
-                let ydiff = y1[i] - driver.y[i];
-                let bspl = hs * k[0][i] - ydiff;
-                dense[0][i] = driver.y[i];
-                dense[1][i] = ydiff;
-                dense[2][i] = bspl;
-                dense[3][i] = ydiff - hs * k[6][i] - bspl;
-                dense[4][i] = hs
-                    * (D1 * k[0][i]
-                        + D3 * k[2][i]
-                        + D4 * k[3][i]
-                        + D5 * k[4][i]
-                        + D6 * k[5][i]
-                        + D7 * k[6][i]);
-            }
+            dense_coefficients(&mut dense, &driver.y, &y1, &k, hs);
             let t1 = if h == span { driver.t_end } else { t + hs };
             let interpolate = |at: f64, out: &mut [f64]| {
                 let theta = (at - t) / hs;
@@ -195,13 +143,90 @@ fn steps(
         } else {
             driver.stats.rejected += 1;
             rejected_last = true;
-            let factor = if err.is_finite() {
-                (0.9 * err.powf(-0.2)).clamp(0.2, 1.0)
-            } else {
-                0.1
-            };
-            h *= factor;
+            h *= rejection_factor(err);
         }
+    }
+}
+
+/// Stages 2…7 of a step of size `hs` from `(t, driver.y)`; stage 7 is evaluated at the new
+/// point `y1` and reused as stage 1 of the next step (FSAL). A failed evaluation is returned.
+fn stages(
+    driver: &mut Driver<'_>,
+    k: &mut [Vec<f64>; 7],
+    stage: &mut [f64],
+    y1: &mut [f64],
+    t: f64,
+    hs: f64,
+) -> Option<Failure> {
+    let rows: [&[(usize, f64)]; 6] = [
+        &[(0, A21)],
+        &[(0, A31), (1, A32)],
+        &[(0, A41), (1, A42), (2, A43)],
+        &[(0, A51), (1, A52), (2, A53), (3, A54)],
+        &[(0, A61), (1, A62), (2, A63), (3, A64), (4, A65)],
+        &[(0, A71), (2, A73), (3, A74), (4, A75), (5, A76)],
+    ];
+    for (s, row) in rows.iter().enumerate() {
+        let out: &mut [f64] = if s == 5 { &mut *y1 } else { &mut *stage };
+        for i in 0..out.len() {
+            let acc: f64 = row.iter().map(|&(j, a)| a * k[j][i]).sum();
+            out[i] = driver.y[i] + hs * acc;
+        }
+        let ts = t + C[s + 1] * hs;
+        let input: &[f64] = if s == 5 { y1 } else { stage };
+        if let Err(e) = driver.rhs(ts, input, &mut k[s + 1]) {
+            return Some(e);
+        }
+    }
+    None
+}
+
+/// The step-size factor after a rejected step (a tenth after a failed evaluation).
+fn rejection_factor(err: f64) -> f64 {
+    if err.is_finite() {
+        (0.9 * err.powf(-0.2)).clamp(0.2, 1.0)
+    } else {
+        0.1
+    }
+}
+
+/// `Σ_j w_j k_j[i]`.
+fn weighted(k: &[Vec<f64>; 7], w: [f64; 7], i: usize) -> f64 {
+    k.iter().zip(w).map(|(kj, wj)| wj * kj[i]).sum()
+}
+
+/// The step-size factor after an accepted step: a PI controller with the exponents of
+/// Hairer's DOPRI5 (α = 0.2 − 0.75 β, β = 0.04), not growing right after a rejection.
+fn pi_factor(err: f64, previous_error: f64, rejected_last: bool) -> f64 {
+    let factor = if err == 0.0 {
+        10.0
+    } else {
+        (0.9 * err.powf(-0.17) * previous_error.powf(0.04)).clamp(0.2, 10.0)
+    };
+    if rejected_last {
+        factor.min(1.0)
+    } else {
+        factor
+    }
+}
+
+/// The coefficients of the dense output (Hairer's continuous extension of order 4) over the
+/// step from `y` to `y1`.
+fn dense_coefficients(
+    dense: &mut [Vec<f64>; 5],
+    y: &[f64],
+    y1: &[f64],
+    k: &[Vec<f64>; 7],
+    hs: f64,
+) {
+    for i in 0..y.len() {
+        let ydiff = y1[i] - y[i];
+        let bspl = hs * k[0][i] - ydiff;
+        dense[0][i] = y[i];
+        dense[1][i] = ydiff;
+        dense[2][i] = bspl;
+        dense[3][i] = ydiff - hs * k[6][i] - bspl;
+        dense[4][i] = hs * weighted(k, [D1, 0.0, D3, D4, D5, D6, D7], i);
     }
 }
 
