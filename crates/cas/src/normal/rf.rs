@@ -1,0 +1,237 @@
+//! [`Rf`], a fraction of polynomials in canonical form: its arithmetic, and the canonical
+//! denominator (integer-primitive, positive leading term, rationalised while small).
+
+use crate::expr::Expr;
+use crate::number::Number;
+use crate::poly::{self, gcd, AtomId, AtomKind, Poly};
+
+use super::{monomial_to_expr, poly_to_expr};
+
+/// A fraction of polynomials in canonical form (see the module documentation).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub(crate) struct Rf {
+    pub(crate) num: Poly,
+    pub(crate) den: Poly,
+}
+
+impl Rf {
+    pub(crate) fn from_poly(p: Poly) -> Rf {
+        Rf {
+            num: p,
+            den: Poly::one(),
+        }
+    }
+
+    pub(crate) fn constant(c: Number) -> Rf {
+        Rf::from_poly(Poly::constant(c))
+    }
+
+    pub(crate) fn zero() -> Rf {
+        Rf::from_poly(Poly::zero())
+    }
+
+    pub(crate) fn one() -> Rf {
+        Rf::from_poly(Poly::one())
+    }
+
+    pub(crate) fn atom(id: AtomId) -> Rf {
+        Rf::from_poly(Poly::atom(id))
+    }
+
+    pub(crate) fn is_zero(&self) -> bool {
+        self.num.is_zero()
+    }
+
+    pub(crate) fn as_constant(&self) -> Option<Number> {
+        if self.den.is_one() {
+            self.num.as_constant()
+        } else {
+            None
+        }
+    }
+
+    /// `num / den` brought to canonical form; `None` when `den` is zero.
+    pub(crate) fn new(num: Poly, den: Poly) -> Option<Rf> {
+        if den.is_zero() {
+            return None;
+        }
+        if num.is_zero() {
+            return Some(Rf::zero());
+        }
+        if den.is_one() {
+            return Some(Rf::from_poly(num));
+        }
+        let (num, den) = rationalize(num, den);
+        if let Some(c) = den.as_constant() {
+            return Some(Rf::from_poly(num.scale(&c.recip()?)));
+        }
+        let g = gcd(&num, &den);
+        let (num, den) = if g.is_one() || g.as_constant().is_some() {
+            (num, den)
+        } else {
+            match (num.div_exact(&g), den.div_exact(&g)) {
+                (Some(n), Some(d)) => (n, d),
+                _ => (num, den),
+            }
+        };
+        if let Some(c) = den.as_constant() {
+            return Some(Rf::from_poly(num.scale(&c.recip()?)));
+        }
+        let unit = denominator_unit(&den);
+        let inv = unit.recip()?;
+        Some(Rf {
+            num: num.scale(&inv),
+            den: den.scale(&inv),
+        })
+    }
+
+    pub(crate) fn add(&self, other: &Rf) -> Rf {
+        if self.den.is_one() && other.den.is_one() {
+            return Rf::from_poly(self.num.add(&other.num));
+        }
+        if self.den == other.den {
+            return Rf::new(self.num.add(&other.num), self.den.clone()).unwrap_or_else(Rf::zero);
+        }
+        let g = gcd(&self.den, &other.den);
+        let split = if g.as_constant().is_some() {
+            None
+        } else {
+            self.den.div_exact(&g).zip(other.den.div_exact(&g))
+        };
+        let (num, den) = match split {
+            // n1/(g a) + n2/(g b) = (n1 b + n2 a) / (g a b)
+            Some((a, b)) => (self.num.mul(&b).add(&other.num.mul(&a)), self.den.mul(&b)),
+            None => (
+                self.num.mul(&other.den).add(&other.num.mul(&self.den)),
+                self.den.mul(&other.den),
+            ),
+        };
+        Rf::new(num, den).unwrap_or_else(Rf::zero)
+    }
+
+    pub(crate) fn neg(&self) -> Rf {
+        Rf {
+            num: self.num.neg(),
+            den: self.den.clone(),
+        }
+    }
+
+    pub(crate) fn sub(&self, other: &Rf) -> Rf {
+        self.add(&other.neg())
+    }
+
+    pub(crate) fn mul(&self, other: &Rf) -> Rf {
+        if self.den.is_one() && other.den.is_one() {
+            return Rf::from_poly(self.num.mul(&other.num));
+        }
+        Rf::new(self.num.mul(&other.num), self.den.mul(&other.den)).unwrap_or_else(Rf::zero)
+    }
+
+    pub(crate) fn scale(&self, c: &Number) -> Rf {
+        Rf {
+            num: self.num.scale(c),
+            den: self.den.clone(),
+        }
+    }
+
+    /// `1 / self`; `None` for zero.
+    pub(crate) fn recip(&self) -> Option<Rf> {
+        if self.num.is_zero() {
+            return None;
+        }
+        Rf::new(self.den.clone(), self.num.clone())
+    }
+
+    pub(crate) fn div(&self, other: &Rf) -> Option<Rf> {
+        Some(self.mul(&other.recip()?))
+    }
+
+    pub(crate) fn powi(&self, k: i64) -> Option<Rf> {
+        let e = u32::try_from(k.unsigned_abs()).ok()?;
+        let p = Rf::new(self.num.pow(e), self.den.pow(e))?;
+        if k < 0 {
+            p.recip()
+        } else {
+            Some(p)
+        }
+    }
+
+    /// The expression tree of this normal form.
+    pub(crate) fn to_expr(&self) -> Expr {
+        let n = poly_to_expr(&self.num);
+        if self.den.is_one() {
+            return n;
+        }
+        n * poly_to_expr(&self.den).powi(-1)
+    }
+}
+
+/// The coefficient that makes a denominator canonical: integer-primitive with a positive
+/// leading term, where "leading" is the largest monomial in the structural order (so the choice
+/// does not depend on the order atoms were created in).
+fn denominator_unit(den: &Poly) -> Number {
+    let lead = den
+        .terms
+        .iter()
+        .max_by(|a, b| monomial_to_expr(&a.0).cmp_structure(monomial_to_expr(&b.0)))
+        .map(|(_, c)| c.clone())
+        .unwrap_or(Number::ONE);
+    if den.terms.iter().any(|(_, c)| c.is_float()) {
+        return lead;
+    }
+    let content = den.terms.iter().fold(Number::ZERO, |g, (_, c)| g.gcd(c));
+    if lead.is_negative() {
+        content.neg()
+    } else {
+        content
+    }
+}
+
+/// Multiplies numerator and denominator by conjugates until the denominator is free of `sin`
+/// atoms and square roots, and of roots in single-term denominators.
+///
+/// Each conjugation roughly squares the denominator, so this is only done while the
+/// denominator stays small (`RATIONALIZE_MAX_TERMS`); past that the fraction is left as it is.
+/// Zero tests stay exact either way (the numerator alone decides them); only the identity of
+/// two normal forms with large trigonometric denominators is then not guaranteed.
+fn rationalize(num: Poly, den: Poly) -> (Poly, Poly) {
+    const RATIONALIZE_MAX_TERMS: usize = 24;
+    let (original_num, original_den) = (num.clone(), den.clone());
+    let (mut num, mut den) = (num, den);
+    for _ in 0..32 {
+        if den.terms.len() > RATIONALIZE_MAX_TERMS {
+            return (original_num, original_den);
+        }
+        let target = den
+            .atoms()
+            .into_iter()
+            .find(|&a| match poly::atom_info(a).kind {
+                AtomKind::Sin { .. } => true,
+                AtomKind::Root { q, .. } => q == 2 || den.terms.len() == 1,
+                _ => false,
+            });
+        let Some(a) = target else { break };
+        let conj = match poly::atom_info(a).kind {
+            AtomKind::Root { q, .. } if den.terms.len() == 1 => {
+                let e = den.degree(a);
+                Poly::atom_pow(a, q - (e % q))
+            }
+            _ => {
+                // den = A + B a with `a` of degree one: multiply by A − B a.
+                let mut conj = Poly::zero();
+                for (d, c) in den.coefficients_in(a) {
+                    let term = c.mul_raw(&Poly::atom_pow(a, d));
+                    conj = if d % 2 == 1 {
+                        conj.sub(&term)
+                    } else {
+                        conj.add(&term)
+                    };
+                }
+                conj
+            }
+        };
+        num = num.mul(&conj);
+        den = den.mul(&conj);
+    }
+    (num, den)
+}
