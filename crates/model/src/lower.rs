@@ -197,8 +197,8 @@ impl Lowerer<'_> {
         }
     }
 
+    /// A model expression as a `cas` scalar or vector.
     fn expr(&self, e: &Expr) -> Result<Value, LowerError> {
-        let unresolved = LowerError::Unresolved { span: e.span };
         let shape = |expected| LowerError::Shape {
             span: e.span,
             expected,
@@ -209,22 +209,43 @@ impl Lowerer<'_> {
             ),
             ExprKind::Time => Value::Scalar(Cx::time()),
             ExprKind::Pi => Value::Scalar(Cx::pi()),
-            ExprKind::Coordinate(id) => Value::Scalar(
-                self.coordinates
-                    .get(id.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(unresolved)?
-                    .0,
-            ),
-            ExprKind::Rate(id) => Value::Scalar(
-                self.coordinates
-                    .get(id.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(unresolved)?
-                    .1,
-            ),
+            ExprKind::Neg(x) => match self.expr(x)? {
+                Value::Scalar(s) => Value::Scalar(-s),
+                Value::Vector(v) => Value::Vector(v.map(|c| -c)),
+            },
+            ExprKind::Binary { op, lhs, rhs } => {
+                binary(*op, self.expr(lhs)?, self.expr(rhs)?).map_err(shape)?
+            }
+            ExprKind::Call { function, args } => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<Result<Vec<_>, _>>()?;
+                call(*function, &vals).map_err(shape)?
+            }
+            ExprKind::Coordinate(_)
+            | ExprKind::Rate(_)
+            | ExprKind::Parameter(_)
+            | ExprKind::Input(_)
+            | ExprKind::Constant(_)
+            | ExprKind::Point(_)
+            | ExprKind::UnitVector { .. } => self.reference(e)?,
+        })
+    }
+
+    /// The value of a reference to a declaration, lowered earlier.
+    fn reference(&self, e: &Expr) -> Result<Value, LowerError> {
+        let unresolved = LowerError::Unresolved { span: e.span };
+        let coordinate = |id: &crate::model::CoordinateId| {
+            self.coordinates
+                .get(id.index())
+                .copied()
+                .flatten()
+                .ok_or(unresolved.clone())
+        };
+        Ok(match &e.kind {
+            ExprKind::Coordinate(id) => Value::Scalar(coordinate(id)?.0),
+            ExprKind::Rate(id) => Value::Scalar(coordinate(id)?.1),
             ExprKind::Parameter(id) => {
                 Value::Scalar(Cx::symbol(&self.model.parameter(*id).name.name))
             }
@@ -258,75 +279,66 @@ impl Lowerer<'_> {
                 let k = axis_index(*axis);
                 Value::Vector([r[0][k], r[1][k], r[2][k]])
             }
-            ExprKind::Neg(x) => match self.expr(x)? {
-                Value::Scalar(s) => Value::Scalar(-s),
-                Value::Vector(v) => Value::Vector(v.map(|c| -c)),
-            },
-            ExprKind::Binary { op, lhs, rhs } => match (op, self.expr(lhs)?, self.expr(rhs)?) {
-                (BinaryOp::Add, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a + b),
-                (BinaryOp::Sub, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a - b),
-                (BinaryOp::Mul, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a * b),
-                (BinaryOp::Div, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a / b),
-                (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(b)) => {
-                    match b.as_number().and_then(Number::to_i64) {
-                        Some(k) => Value::Scalar(a.powi(k)),
-                        None => Value::Scalar(a.pow(b)),
-                    }
-                }
-                (BinaryOp::Add, Value::Vector(a), Value::Vector(b)) => {
-                    Value::Vector([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
-                }
-                (BinaryOp::Sub, Value::Vector(a), Value::Vector(b)) => {
-                    Value::Vector([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
-                }
-                (BinaryOp::Mul, Value::Scalar(s), Value::Vector(v))
-                | (BinaryOp::Mul, Value::Vector(v), Value::Scalar(s)) => {
-                    Value::Vector(v.map(|c| s * c))
-                }
-                (BinaryOp::Div, Value::Vector(v), Value::Scalar(s)) => {
-                    Value::Vector(v.map(|c| c / s))
-                }
-                (_, Value::Vector(_), _) | (_, _, Value::Vector(_)) => return Err(shape("scalar")),
-            },
-            ExprKind::Call { function, args } => {
-                let vals = args
-                    .iter()
-                    .map(|a| self.expr(a))
-                    .collect::<Result<Vec<_>, _>>()?;
-                match (function, vals.as_slice()) {
-                    (Function::Dot, [Value::Vector(u), Value::Vector(v)]) => {
-                        Value::Scalar(u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
-                    }
-                    (Function::Cross, [Value::Vector(u), Value::Vector(v)]) => Value::Vector([
-                        u[1] * v[2] - u[2] * v[1],
-                        u[2] * v[0] - u[0] * v[2],
-                        u[0] * v[1] - u[1] * v[0],
-                    ]),
-                    (Function::Norm, [Value::Vector(v)]) => {
-                        Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
-                    }
-                    (f, [Value::Scalar(x)]) => Value::Scalar(match f {
-                        Function::Sin => x.sin(),
-                        Function::Cos => x.cos(),
-                        Function::Tan => x.tan(),
-                        Function::Asin => x.asin(),
-                        Function::Acos => x.acos(),
-                        Function::Atan => x.atan(),
-                        Function::Exp => x.exp(),
-                        Function::Ln => x.ln(),
-                        Function::Sqrt => x.sqrt(),
-                        Function::Abs => x.abs(),
-                        Function::Sign => x.sign(),
-                        _ => return Err(shape("vector")),
-                    }),
-                    (Function::Atan2, [Value::Scalar(y), Value::Scalar(x)]) => {
-                        Value::Scalar(Cx::atan2(*y, *x))
-                    }
-                    _ => return Err(shape("scalar")),
-                }
-            }
+            // Not a reference: `expr` lowers everything else.
+            _ => return Err(unresolved),
         })
     }
+}
+
+/// A binary operation on lowered operands; `Err` names the shape an operand should have had.
+fn binary(op: BinaryOp, lhs: Value, rhs: Value) -> Result<Value, &'static str> {
+    Ok(match (op, lhs, rhs) {
+        (BinaryOp::Add, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a + b),
+        (BinaryOp::Sub, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a - b),
+        (BinaryOp::Mul, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a * b),
+        (BinaryOp::Div, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a / b),
+        (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(b)) => {
+            match b.as_number().and_then(Number::to_i64) {
+                Some(k) => Value::Scalar(a.powi(k)),
+                None => Value::Scalar(a.pow(b)),
+            }
+        }
+        (BinaryOp::Add, Value::Vector(a), Value::Vector(b)) => {
+            Value::Vector([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+        }
+        (BinaryOp::Sub, Value::Vector(a), Value::Vector(b)) => {
+            Value::Vector([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+        }
+        (BinaryOp::Mul, Value::Scalar(s), Value::Vector(v))
+        | (BinaryOp::Mul, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.map(|c| s * c)),
+        (BinaryOp::Div, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.map(|c| c / s)),
+        (_, Value::Vector(_), _) | (_, _, Value::Vector(_)) => return Err("scalar"),
+    })
+}
+
+/// A built-in function applied to lowered arguments; `Err` names the shape an argument should
+/// have had.
+fn call(function: Function, args: &[Value]) -> Result<Value, &'static str> {
+    Ok(match (function, args) {
+        (Function::Dot, [Value::Vector(u), Value::Vector(v)]) => {
+            Value::Scalar(u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
+        }
+        (Function::Cross, [Value::Vector(u), Value::Vector(v)]) => Value::Vector(cross(u, v)),
+        (Function::Norm, [Value::Vector(v)]) => {
+            Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+        }
+        (f, [Value::Scalar(x)]) => Value::Scalar(match f {
+            Function::Sin => x.sin(),
+            Function::Cos => x.cos(),
+            Function::Tan => x.tan(),
+            Function::Asin => x.asin(),
+            Function::Acos => x.acos(),
+            Function::Atan => x.atan(),
+            Function::Exp => x.exp(),
+            Function::Ln => x.ln(),
+            Function::Sqrt => x.sqrt(),
+            Function::Abs => x.abs(),
+            Function::Sign => x.sign(),
+            _ => return Err("vector"),
+        }),
+        (Function::Atan2, [Value::Scalar(y), Value::Scalar(x)]) => Value::Scalar(Cx::atan2(*y, *x)),
+        _ => return Err("scalar"),
+    })
 }
 
 /// Lowers a checked model to the mechanics' input, one pass over the declarations in file
