@@ -117,18 +117,7 @@ impl<'m> Environment<'m> {
     ) -> Result<Environment<'m>, EvaluationError> {
         let h = TIME_STEP * (1.0 + state.time.abs());
         let neighbours = if rates && model.coordinates.iter().any(|c| c.driven.is_some()) {
-            let before = State {
-                time: state.time - h,
-                ..*state
-            };
-            let after = State {
-                time: state.time + h,
-                ..*state
-            };
-            Some((
-                Environment::new(model, &before, false)?,
-                Environment::new(model, &after, false)?,
-            ))
+            Some(Environment::neighbours(model, state, h)?)
         } else {
             None
         };
@@ -144,74 +133,118 @@ impl<'m> Environment<'m> {
             points: vec![[0.0; 3]],
         };
         for declaration in &model.declarations {
-            match *declaration {
-                Declaration::Coordinate(id) => {
-                    if let Some(motion) = &model.coordinate(id).driven {
-                        let value = environment.scalar(motion)?;
-                        let rate = match &neighbours {
-                            Some((before, after)) => {
-                                let at = |e: &Environment<'_>| {
-                                    e.coordinates.get(id.index()).copied().unwrap_or(f64::NAN)
-                                };
-                                (at(after) - at(before)) / (2.0 * h)
-                            }
-                            None => 0.0,
-                        };
-                        if let Some(slot) = environment.coordinates.get_mut(id.index()) {
-                            *slot = value;
-                        }
-                        if let Some(slot) = environment.rates.get_mut(id.index()) {
-                            *slot = rate;
-                        }
-                    }
-                }
-                Declaration::Parameter(id) => {
-                    let value = match &model.parameter(id).value {
-                        Some(value) => Some(environment.scalar(value)?),
-                        None => None,
-                    };
-                    environment.parameters.push(value);
-                }
-                Declaration::Input(id) => {
-                    let value = match &model.input(id).value {
-                        Some(value) => Some(environment.scalar(value)?),
-                        None => None,
-                    };
-                    environment.inputs.push(value);
-                }
-                Declaration::Constant(id) => {
-                    let value = environment.value(&model.constant(id).value)?;
-                    environment.constants.push(Some(value));
-                }
-                Declaration::Frame(id) => {
-                    let matrix = match &model.frame(id).rotation {
-                        None => IDENTITY,
-                        Some((parent, rotations)) => {
-                            let mut matrix = environment
-                                .frames
-                                .get(parent.index())
-                                .copied()
-                                .unwrap_or(IDENTITY);
-                            for rotation in rotations {
-                                let angle = environment.scalar(&rotation.angle)?;
-                                matrix = multiply(&matrix, &elementary(rotation.axis, angle));
-                            }
-                            matrix
-                        }
-                    };
-                    environment.frames.push(matrix);
-                }
-                Declaration::Point(id) => {
-                    let position = match &model.point(id).position {
-                        Some(position) => environment.vector(position)?,
-                        None => [0.0; 3],
-                    };
-                    environment.points.push(position);
-                }
-                Declaration::Body(_) | Declaration::Constraint(_) => {}
-            }
+            environment.declare(*declaration, neighbours.as_ref(), h)?;
         }
         Ok(environment)
+    }
+
+    /// The environments (without rates) at `t − h` and `t + h`.
+    fn neighbours(
+        model: &'m Model,
+        state: &State<'_>,
+        h: f64,
+    ) -> Result<(Environment<'m>, Environment<'m>), EvaluationError> {
+        let before = State {
+            time: state.time - h,
+            ..*state
+        };
+        let after = State {
+            time: state.time + h,
+            ..*state
+        };
+        Ok((
+            Environment::new(model, &before, false)?,
+            Environment::new(model, &after, false)?,
+        ))
+    }
+
+    /// Evaluates one declaration and keeps its value for later references.
+    fn declare(
+        &mut self,
+        declaration: Declaration,
+        neighbours: Option<&(Environment<'m>, Environment<'m>)>,
+        h: f64,
+    ) -> Result<(), EvaluationError> {
+        let model = self.model;
+        match declaration {
+            Declaration::Coordinate(id) => {
+                if let Some(motion) = &model.coordinate(id).driven {
+                    self.drive(id, motion, neighbours, h)?;
+                }
+            }
+            Declaration::Parameter(id) => {
+                let value = match &model.parameter(id).value {
+                    Some(value) => Some(self.scalar(value)?),
+                    None => None,
+                };
+                self.parameters.push(value);
+            }
+            Declaration::Input(id) => {
+                let value = match &model.input(id).value {
+                    Some(value) => Some(self.scalar(value)?),
+                    None => None,
+                };
+                self.inputs.push(value);
+            }
+            Declaration::Constant(id) => {
+                let value = self.value(&model.constant(id).value)?;
+                self.constants.push(Some(value));
+            }
+            Declaration::Frame(id) => {
+                let matrix = self.frame(id)?;
+                self.frames.push(matrix);
+            }
+            Declaration::Point(id) => {
+                let position = match &model.point(id).position {
+                    Some(position) => self.vector(position)?,
+                    None => [0.0; 3],
+                };
+                self.points.push(position);
+            }
+            Declaration::Body(_) | Declaration::Constraint(_) => {}
+        }
+        Ok(())
+    }
+
+    /// Sets a driven coordinate's value from its motion, and its rate from the neighbours'
+    /// values (zero without them).
+    fn drive(
+        &mut self,
+        id: crate::model::CoordinateId,
+        motion: &Expr,
+        neighbours: Option<&(Environment<'m>, Environment<'m>)>,
+        h: f64,
+    ) -> Result<(), EvaluationError> {
+        let value = self.scalar(motion)?;
+        let rate = match neighbours {
+            Some((before, after)) => {
+                let at = |e: &Environment<'_>| {
+                    e.coordinates.get(id.index()).copied().unwrap_or(f64::NAN)
+                };
+                (at(after) - at(before)) / (2.0 * h)
+            }
+            None => 0.0,
+        };
+        if let Some(slot) = self.coordinates.get_mut(id.index()) {
+            *slot = value;
+        }
+        if let Some(slot) = self.rates.get_mut(id.index()) {
+            *slot = rate;
+        }
+        Ok(())
+    }
+
+    /// A frame's matrix: its parent's, turned by each of its rotations in order.
+    fn frame(&self, id: crate::model::FrameId) -> Result<Matrix, EvaluationError> {
+        let Some((parent, rotations)) = &self.model.frame(id).rotation else {
+            return Ok(IDENTITY);
+        };
+        let mut matrix = self.frames.get(parent.index()).copied().unwrap_or(IDENTITY);
+        for rotation in rotations {
+            let angle = self.scalar(&rotation.angle)?;
+            matrix = multiply(&matrix, &elementary(rotation.axis, angle));
+        }
+        Ok(matrix)
     }
 
     fn scalar(&self, expr: &Expr) -> Result<f64, EvaluationError> {

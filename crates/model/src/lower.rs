@@ -197,8 +197,8 @@ impl Lowerer<'_> {
         }
     }
 
+    /// A model expression as a `cas` scalar or vector.
     fn expr(&self, e: &Expr) -> Result<Value, LowerError> {
-        let unresolved = LowerError::Unresolved { span: e.span };
         let shape = |expected| LowerError::Shape {
             span: e.span,
             expected,
@@ -209,22 +209,43 @@ impl Lowerer<'_> {
             ),
             ExprKind::Time => Value::Scalar(Cx::time()),
             ExprKind::Pi => Value::Scalar(Cx::pi()),
-            ExprKind::Coordinate(id) => Value::Scalar(
-                self.coordinates
-                    .get(id.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(unresolved)?
-                    .0,
-            ),
-            ExprKind::Rate(id) => Value::Scalar(
-                self.coordinates
-                    .get(id.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(unresolved)?
-                    .1,
-            ),
+            ExprKind::Neg(x) => match self.expr(x)? {
+                Value::Scalar(s) => Value::Scalar(-s),
+                Value::Vector(v) => Value::Vector(v.map(|c| -c)),
+            },
+            ExprKind::Binary { op, lhs, rhs } => {
+                binary(*op, self.expr(lhs)?, self.expr(rhs)?).map_err(shape)?
+            }
+            ExprKind::Call { function, args } => {
+                let vals = args
+                    .iter()
+                    .map(|a| self.expr(a))
+                    .collect::<Result<Vec<_>, _>>()?;
+                call(*function, &vals).map_err(shape)?
+            }
+            ExprKind::Coordinate(_)
+            | ExprKind::Rate(_)
+            | ExprKind::Parameter(_)
+            | ExprKind::Input(_)
+            | ExprKind::Constant(_)
+            | ExprKind::Point(_)
+            | ExprKind::UnitVector { .. } => self.reference(e)?,
+        })
+    }
+
+    /// The value of a reference to a declaration, lowered earlier.
+    fn reference(&self, e: &Expr) -> Result<Value, LowerError> {
+        let unresolved = LowerError::Unresolved { span: e.span };
+        let coordinate = |id: &crate::model::CoordinateId| {
+            self.coordinates
+                .get(id.index())
+                .copied()
+                .flatten()
+                .ok_or(unresolved.clone())
+        };
+        Ok(match &e.kind {
+            ExprKind::Coordinate(id) => Value::Scalar(coordinate(id)?.0),
+            ExprKind::Rate(id) => Value::Scalar(coordinate(id)?.1),
             ExprKind::Parameter(id) => {
                 Value::Scalar(Cx::symbol(&self.model.parameter(*id).name.name))
             }
@@ -258,75 +279,66 @@ impl Lowerer<'_> {
                 let k = axis_index(*axis);
                 Value::Vector([r[0][k], r[1][k], r[2][k]])
             }
-            ExprKind::Neg(x) => match self.expr(x)? {
-                Value::Scalar(s) => Value::Scalar(-s),
-                Value::Vector(v) => Value::Vector(v.map(|c| -c)),
-            },
-            ExprKind::Binary { op, lhs, rhs } => match (op, self.expr(lhs)?, self.expr(rhs)?) {
-                (BinaryOp::Add, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a + b),
-                (BinaryOp::Sub, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a - b),
-                (BinaryOp::Mul, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a * b),
-                (BinaryOp::Div, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a / b),
-                (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(b)) => {
-                    match b.as_number().and_then(Number::to_i64) {
-                        Some(k) => Value::Scalar(a.powi(k)),
-                        None => Value::Scalar(a.pow(b)),
-                    }
-                }
-                (BinaryOp::Add, Value::Vector(a), Value::Vector(b)) => {
-                    Value::Vector([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
-                }
-                (BinaryOp::Sub, Value::Vector(a), Value::Vector(b)) => {
-                    Value::Vector([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
-                }
-                (BinaryOp::Mul, Value::Scalar(s), Value::Vector(v))
-                | (BinaryOp::Mul, Value::Vector(v), Value::Scalar(s)) => {
-                    Value::Vector(v.map(|c| s * c))
-                }
-                (BinaryOp::Div, Value::Vector(v), Value::Scalar(s)) => {
-                    Value::Vector(v.map(|c| c / s))
-                }
-                (_, Value::Vector(_), _) | (_, _, Value::Vector(_)) => return Err(shape("scalar")),
-            },
-            ExprKind::Call { function, args } => {
-                let vals = args
-                    .iter()
-                    .map(|a| self.expr(a))
-                    .collect::<Result<Vec<_>, _>>()?;
-                match (function, vals.as_slice()) {
-                    (Function::Dot, [Value::Vector(u), Value::Vector(v)]) => {
-                        Value::Scalar(u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
-                    }
-                    (Function::Cross, [Value::Vector(u), Value::Vector(v)]) => Value::Vector([
-                        u[1] * v[2] - u[2] * v[1],
-                        u[2] * v[0] - u[0] * v[2],
-                        u[0] * v[1] - u[1] * v[0],
-                    ]),
-                    (Function::Norm, [Value::Vector(v)]) => {
-                        Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
-                    }
-                    (f, [Value::Scalar(x)]) => Value::Scalar(match f {
-                        Function::Sin => x.sin(),
-                        Function::Cos => x.cos(),
-                        Function::Tan => x.tan(),
-                        Function::Asin => x.asin(),
-                        Function::Acos => x.acos(),
-                        Function::Atan => x.atan(),
-                        Function::Exp => x.exp(),
-                        Function::Ln => x.ln(),
-                        Function::Sqrt => x.sqrt(),
-                        Function::Abs => x.abs(),
-                        Function::Sign => x.sign(),
-                        _ => return Err(shape("vector")),
-                    }),
-                    (Function::Atan2, [Value::Scalar(y), Value::Scalar(x)]) => {
-                        Value::Scalar(Cx::atan2(*y, *x))
-                    }
-                    _ => return Err(shape("scalar")),
-                }
-            }
+            // Not a reference: `expr` lowers everything else.
+            _ => return Err(unresolved),
         })
     }
+}
+
+/// A binary operation on lowered operands; `Err` names the shape an operand should have had.
+fn binary(op: BinaryOp, lhs: Value, rhs: Value) -> Result<Value, &'static str> {
+    Ok(match (op, lhs, rhs) {
+        (BinaryOp::Add, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a + b),
+        (BinaryOp::Sub, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a - b),
+        (BinaryOp::Mul, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a * b),
+        (BinaryOp::Div, Value::Scalar(a), Value::Scalar(b)) => Value::Scalar(a / b),
+        (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(b)) => {
+            match b.as_number().and_then(Number::to_i64) {
+                Some(k) => Value::Scalar(a.powi(k)),
+                None => Value::Scalar(a.pow(b)),
+            }
+        }
+        (BinaryOp::Add, Value::Vector(a), Value::Vector(b)) => {
+            Value::Vector([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+        }
+        (BinaryOp::Sub, Value::Vector(a), Value::Vector(b)) => {
+            Value::Vector([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+        }
+        (BinaryOp::Mul, Value::Scalar(s), Value::Vector(v))
+        | (BinaryOp::Mul, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.map(|c| s * c)),
+        (BinaryOp::Div, Value::Vector(v), Value::Scalar(s)) => Value::Vector(v.map(|c| c / s)),
+        (_, Value::Vector(_), _) | (_, _, Value::Vector(_)) => return Err("scalar"),
+    })
+}
+
+/// A built-in function applied to lowered arguments; `Err` names the shape an argument should
+/// have had.
+fn call(function: Function, args: &[Value]) -> Result<Value, &'static str> {
+    Ok(match (function, args) {
+        (Function::Dot, [Value::Vector(u), Value::Vector(v)]) => {
+            Value::Scalar(u[0] * v[0] + u[1] * v[1] + u[2] * v[2])
+        }
+        (Function::Cross, [Value::Vector(u), Value::Vector(v)]) => Value::Vector(cross(u, v)),
+        (Function::Norm, [Value::Vector(v)]) => {
+            Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
+        }
+        (f, [Value::Scalar(x)]) => Value::Scalar(match f {
+            Function::Sin => x.sin(),
+            Function::Cos => x.cos(),
+            Function::Tan => x.tan(),
+            Function::Asin => x.asin(),
+            Function::Acos => x.acos(),
+            Function::Atan => x.atan(),
+            Function::Exp => x.exp(),
+            Function::Ln => x.ln(),
+            Function::Sqrt => x.sqrt(),
+            Function::Abs => x.abs(),
+            Function::Sign => x.sign(),
+            _ => return Err("vector"),
+        }),
+        (Function::Atan2, [Value::Scalar(y), Value::Scalar(x)]) => Value::Scalar(Cx::atan2(*y, *x)),
+        _ => return Err("scalar"),
+    })
 }
 
 /// Lowers a checked model to the mechanics' input, one pass over the declarations in file
@@ -350,115 +362,191 @@ pub(crate) type Geometry = (Vec<Option<Vector>>, Vec<Option<Rotation>>);
 
 /// [`lower_with`], also returning the points and frames.
 pub(crate) fn lower_parts(model: &Model, shift: Shift) -> Result<(System, Geometry), LowerError> {
-    let mut l = Lowerer {
-        model,
-        shift,
-        coordinates: vec![None; model.coordinates().len()],
-        constants: vec![None; model.constants().len()],
-        inputs: vec![None; model.inputs().len()],
-        frames: vec![None; model.frames().len()],
-        points: vec![None; model.points().len()],
-    };
-    if let Some(origin) = l.points.get_mut(0) {
-        *origin = Some([Cx::zero(), Cx::zero(), Cx::zero()]);
-    }
+    let mut l = Lowerer::new(model, shift);
     let mut system = System::new();
-    let mut coordinate_index = vec![None; model.coordinates().len()];
-    let mut body_index = vec![None; model.bodies().len()];
+    let mut indices = Indices {
+        coordinates: vec![None; model.coordinates().len()],
+        bodies: vec![None; model.bodies().len()],
+    };
     for declaration in model.declarations() {
-        match *declaration {
-            Declaration::Coordinate(id) => {
-                let c = model.coordinate(id);
-                let name = &c.name.name;
-                let driven = c.driven.as_ref().filter(|_| l.shift.freed != Some(id));
-                let value = match driven {
-                    Some(motion) => {
-                        let f = l.scalar(motion)?;
-                        system.add_driven(name, f);
-                        (f, f.dt())
-                    }
-                    None => {
-                        coordinate_index[id.index()] = Some(system.add_coordinate(name));
-                        (Cx::coordinate(name), Cx::rate(name, 1))
-                    }
-                };
-                l.coordinates[id.index()] = Some(value);
-            }
-            Declaration::Parameter(id) => {
-                let p = model.parameter(id);
-                let value = p.value.as_ref().map(|v| l.scalar(v)).transpose()?;
-                system.add_parameter(&p.name.name, value);
-            }
-            Declaration::Input(id) => {
-                let input = model.input(id);
-                let symbol = Cx::symbol(&input.name.name);
-                let value = match &input.value {
-                    Some(v) => {
-                        let x = l.scalar(v)?;
-                        let timed = Cx::time().as_symbol().is_some_and(|t| !x.diff(t).is_zero());
-                        if timed {
-                            x
-                        } else {
-                            system.add_input(&input.name.name, Some(x));
-                            symbol
-                        }
-                    }
-                    None => {
-                        system.add_input(&input.name.name, None);
-                        symbol
-                    }
-                };
-                l.inputs[id.index()] = Some(value);
-            }
-            Declaration::Constant(id) => {
-                let value = l.expr(&model.constant(id).value)?;
-                if let Value::Scalar(x) = &value {
-                    system.add_constant(&model.constant(id).name.name, *x);
-                }
-                l.constants[id.index()] = Some(value);
-            }
-            Declaration::Frame(id) => {
-                let r = match &model.frame(id).rotation {
-                    None => identity(),
-                    Some((parent, rotations)) => {
-                        let mut r = l.frames.get(parent.index()).copied().flatten().ok_or(
-                            LowerError::Unresolved {
-                                span: model.frame(id).name.span,
-                            },
-                        )?;
-                        for rotation in rotations {
-                            let angle = l.scalar(&rotation.angle)?;
-                            r = matmul(&r, &rotation_about(axis_index(rotation.axis), angle));
-                        }
-                        r
-                    }
-                };
-                l.frames[id.index()] = Some(r);
-            }
-            Declaration::Point(id) => {
-                if let Some(position) = &model.point(id).position {
-                    let mut v = l.vector(position)?;
-                    // A point defined from a released point already moves with it.
-                    if l.shift.points.contains(&id) && !l.moves(&v) {
-                        v = shifted(v, l.shift.displacement.as_ref());
-                    }
-                    let v = l.rigid(v.map(Cx::normal));
-                    system.add_point(&model.point(id).name.name, v);
-                    l.points[id.index()] = Some(v);
-                }
-            }
-            Declaration::Body(id) => {
-                let b = model.body(id);
-                let index = lower_body(&l, &mut system, b)?;
-                body_index[id.index()] = Some(index);
-            }
-            Declaration::Constraint(_) => {}
-        }
+        l.declaration(&mut system, &mut indices, *declaration)?;
     }
     for u in &l.shift.coordinates {
         system.add_coordinate(u);
     }
-    for (index, p) in model.particles().iter().enumerate() {
+    lower_particles(&l, &mut system)?;
+    for item in model.loads() {
+        if let Some(load) = lower_load(&l, &indices, item)? {
+            system.add_load(load);
+        }
+    }
+    for (index, c) in model.constraints().iter().enumerate() {
+        if l.shift.dropped.is_some_and(|d| d.index() == index) {
+            continue;
+        }
+        let name = c
+            .name
+            .as_ref()
+            .map_or_else(|| "constraint".to_string(), |n| n.name.clone());
+        let equations = constraint_equations(&l, c)?;
+        system.add_constraint(MConstraint { name, equations });
+    }
+    Ok((system, (l.points, l.frames)))
+}
+
+/// The system's indices of the free coordinates and of the bodies, by model id (`None`:
+/// driven, or not lowered yet).
+struct Indices {
+    coordinates: Vec<Option<usize>>,
+    bodies: Vec<Option<usize>>,
+}
+
+impl<'m> Lowerer<'m> {
+    /// Nothing lowered yet but `origin`, the first point.
+    fn new(model: &'m Model, shift: Shift) -> Self {
+        let mut l = Lowerer {
+            model,
+            shift,
+            coordinates: vec![None; model.coordinates().len()],
+            constants: vec![None; model.constants().len()],
+            inputs: vec![None; model.inputs().len()],
+            frames: vec![None; model.frames().len()],
+            points: vec![None; model.points().len()],
+        };
+        if let Some(origin) = l.points.get_mut(0) {
+            *origin = Some([Cx::zero(), Cx::zero(), Cx::zero()]);
+        }
+        l
+    }
+
+    /// Lowers one declaration into `system`, keeping its value for later references.
+    fn declaration(
+        &mut self,
+        system: &mut System,
+        indices: &mut Indices,
+        declaration: Declaration,
+    ) -> Result<(), LowerError> {
+        let model = self.model;
+        match declaration {
+            Declaration::Coordinate(id) => {
+                let (value, index) = self.coordinate(system, id)?;
+                indices.coordinates[id.index()] = index;
+                self.coordinates[id.index()] = Some(value);
+            }
+            Declaration::Parameter(id) => {
+                let p = model.parameter(id);
+                let value = p.value.as_ref().map(|v| self.scalar(v)).transpose()?;
+                system.add_parameter(&p.name.name, value);
+            }
+            Declaration::Input(id) => {
+                self.inputs[id.index()] = Some(self.input(system, id)?);
+            }
+            Declaration::Constant(id) => {
+                let value = self.expr(&model.constant(id).value)?;
+                if let Value::Scalar(x) = &value {
+                    system.add_constant(&model.constant(id).name.name, *x);
+                }
+                self.constants[id.index()] = Some(value);
+            }
+            Declaration::Frame(id) => {
+                self.frames[id.index()] = Some(self.frame(id)?);
+            }
+            Declaration::Point(id) => {
+                if let Some(position) = &model.point(id).position {
+                    let v = self.point(id, position)?;
+                    system.add_point(&model.point(id).name.name, v);
+                    self.points[id.index()] = Some(v);
+                }
+            }
+            Declaration::Body(id) => {
+                indices.bodies[id.index()] = Some(lower_body(self, system, model.body(id))?);
+            }
+            Declaration::Constraint(_) => {}
+        }
+        Ok(())
+    }
+
+    /// A coordinate's value and rate, and its index in `system` when it is free (not driven,
+    /// or freed by the release).
+    fn coordinate(
+        &self,
+        system: &mut System,
+        id: crate::model::CoordinateId,
+    ) -> Result<((Cx, Cx), Option<usize>), LowerError> {
+        let c = self.model.coordinate(id);
+        let name = &c.name.name;
+        let driven = c.driven.as_ref().filter(|_| self.shift.freed != Some(id));
+        Ok(match driven {
+            Some(motion) => {
+                let f = self.scalar(motion)?;
+                system.add_driven(name, f);
+                ((f, f.dt()), None)
+            }
+            None => {
+                let index = system.add_coordinate(name);
+                ((Cx::coordinate(name), Cx::rate(name, 1)), Some(index))
+            }
+        })
+    }
+
+    /// An input's value: a time-dependent value substituted, otherwise its symbol (with the
+    /// value, if any, as the simulation's default).
+    fn input(&self, system: &mut System, id: crate::model::InputId) -> Result<Cx, LowerError> {
+        let input = self.model.input(id);
+        let symbol = Cx::symbol(&input.name.name);
+        Ok(match &input.value {
+            Some(v) => {
+                let x = self.scalar(v)?;
+                let timed = Cx::time().as_symbol().is_some_and(|t| !x.diff(t).is_zero());
+                if timed {
+                    x
+                } else {
+                    system.add_input(&input.name.name, Some(x));
+                    symbol
+                }
+            }
+            None => {
+                system.add_input(&input.name.name, None);
+                symbol
+            }
+        })
+    }
+
+    /// A frame's rotation: its parent's, turned by each of its rotations in order.
+    fn frame(&self, id: crate::model::FrameId) -> Result<Rotation, LowerError> {
+        let frame = self.model.frame(id);
+        let Some((parent, rotations)) = &frame.rotation else {
+            return Ok(identity());
+        };
+        let mut r =
+            self.frames
+                .get(parent.index())
+                .copied()
+                .flatten()
+                .ok_or(LowerError::Unresolved {
+                    span: frame.name.span,
+                })?;
+        for rotation in rotations {
+            let angle = self.scalar(&rotation.angle)?;
+            r = matmul(&r, &rotation_about(axis_index(rotation.axis), angle));
+        }
+        Ok(r)
+    }
+
+    /// A point's position, moved with the release's members when it is one of them.
+    fn point(&self, id: crate::model::PointId, position: &Expr) -> Result<Vector, LowerError> {
+        let mut v = self.vector(position)?;
+        // A point defined from a released point already moves with it.
+        if self.shift.points.contains(&id) && !self.moves(&v) {
+            v = shifted(v, self.shift.displacement.as_ref());
+        }
+        Ok(self.rigid(v.map(Cx::normal)))
+    }
+}
+
+/// Adds the model's particles, displacing the released ones at `origin`.
+fn lower_particles(l: &Lowerer<'_>, system: &mut System) -> Result<(), LowerError> {
+    for (index, p) in l.model.particles().iter().enumerate() {
         let mut position = l
             .points
             .get(p.point.index())
@@ -470,160 +558,183 @@ pub(crate) fn lower_parts(model: &Model, shift: Shift) -> Result<(System, Geomet
             position = l.rigid(shifted(position, l.shift.displacement.as_ref()));
         }
         system.add_particle(Particle {
-            name: model.point(p.point).name.name.clone(),
+            name: l.model.point(p.point).name.name.clone(),
             mass: l.scalar(&p.mass)?,
             position,
         });
     }
-    for item in model.loads() {
-        let load = match &item.load {
-            Load::Gravity(g) => MLoad::Gravity(l.vector(g)?),
-            Load::Spring {
-                stiffness,
-                connection,
-                rest,
-            } => {
-                let k = l.scalar(stiffness)?;
-                let rest = rest.as_ref().map(|r| l.scalar(r)).transpose()?;
-                let rest = rest.filter(|r| !r.is_zero());
-                let v = match connection {
-                    Connection::Points { from, to } => {
-                        let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
-                        let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-                        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                        match rest {
-                            // With no rest length the potential stays polynomial.
-                            None => k * d2 / 2,
-                            Some(r) => k * (d2.sqrt() - r).powi(2) / 2,
-                        }
-                    }
-                    Connection::Scalar(s) => {
-                        let s = l.scalar(s)?;
-                        k * (s - rest.unwrap_or_else(Cx::zero)).powi(2) / 2
-                    }
-                };
-                MLoad::Potential(v)
+    Ok(())
+}
+
+/// One load in the mechanics' terms; `None` for a load that does no virtual work.
+fn lower_load(
+    l: &Lowerer<'_>,
+    indices: &Indices,
+    item: &crate::model::LoadItem,
+) -> Result<Option<MLoad>, LowerError> {
+    Ok(Some(match &item.load {
+        Load::Gravity(g) => MLoad::Gravity(l.vector(g)?),
+        Load::Spring {
+            stiffness,
+            connection,
+            rest,
+        } => MLoad::Potential(spring_potential(l, stiffness, connection, rest.as_ref())?),
+        Load::Damper {
+            coefficient,
+            connection,
+        } => MLoad::Dissipation(damper_dissipation(l, coefficient, connection)?),
+        Load::Dissipation(d) => MLoad::Dissipation(l.scalar(d)?),
+        Load::Potential(v) => MLoad::Potential(l.scalar(v)?),
+        Load::Force { force, point } => MLoad::Force {
+            force: l.vector(force)?,
+            point: l.rigid(l.vector(point)?),
+        },
+        Load::Couple { moment, body } => MLoad::Couple {
+            moment: l.vector(moment)?,
+            body: indices
+                .bodies
+                .get(body.index())
+                .copied()
+                .flatten()
+                .ok_or(LowerError::Unresolved { span: item.span })?,
+        },
+        Load::GeneralizedForce { force, coordinate } => {
+            let f = l.scalar(force)?;
+            match indices
+                .coordinates
+                .get(coordinate.index())
+                .copied()
+                .flatten()
+            {
+                Some(j) => MLoad::GeneralizedForce {
+                    force: f,
+                    coordinate: j,
+                },
+                // A generalized force on a driven coordinate does no virtual work.
+                None => return Ok(None),
             }
-            Load::Damper {
-                coefficient,
-                connection,
-            } => {
-                let c = l.scalar(coefficient)?;
-                let rate2 = match connection {
-                    Connection::Points { from, to } => {
-                        let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
-                        let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-                        let dd: Vector = d.map(Cx::dt);
-                        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                        let along = d[0] * dd[0] + d[1] * dd[1] + d[2] * dd[2];
-                        along.powi(2) / d2
-                    }
-                    Connection::Scalar(s) => l.scalar(s)?.dt().powi(2),
-                };
-                MLoad::Dissipation(c * rate2 / 2)
-            }
-            Load::Dissipation(d) => MLoad::Dissipation(l.scalar(d)?),
-            Load::Potential(v) => MLoad::Potential(l.scalar(v)?),
-            Load::Force { force, point } => MLoad::Force {
-                force: l.vector(force)?,
-                point: l.rigid(l.vector(point)?),
-            },
-            Load::Couple { moment, body } => MLoad::Couple {
-                moment: l.vector(moment)?,
-                body: body_index
-                    .get(body.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(LowerError::Unresolved { span: item.span })?,
-            },
-            Load::GeneralizedForce { force, coordinate } => {
-                let f = l.scalar(force)?;
-                match coordinate_index.get(coordinate.index()).copied().flatten() {
-                    Some(j) => MLoad::GeneralizedForce {
-                        force: f,
-                        coordinate: j,
-                    },
-                    // A generalized force on a driven coordinate does no virtual work.
-                    None => continue,
-                }
-            }
-        };
-        system.add_load(load);
-    }
-    for (index, c) in model.constraints().iter().enumerate() {
-        if l.shift.dropped.is_some_and(|d| d.index() == index) {
-            continue;
         }
-        let name = c
-            .name
-            .as_ref()
-            .map_or_else(|| "constraint".to_string(), |n| n.name.clone());
-        let equations = match &c.kind {
-            ConstraintKind::Holonomic { lhs, rhs } => {
-                vec![ConstraintForm::Holonomic(l.scalar(lhs)? - l.scalar(rhs)?)]
+    }))
+}
+
+/// A spring's potential `k (ℓ − r)² / 2`.
+fn spring_potential(
+    l: &Lowerer<'_>,
+    stiffness: &Expr,
+    connection: &Connection,
+    rest: Option<&Expr>,
+) -> Result<Cx, LowerError> {
+    let k = l.scalar(stiffness)?;
+    let rest = rest.map(|r| l.scalar(r)).transpose()?;
+    let rest = rest.filter(|r| !r.is_zero());
+    Ok(match connection {
+        Connection::Points { from, to } => {
+            let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
+            let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            match rest {
+                // With no rest length the potential stays polynomial.
+                None => k * d2 / 2,
+                Some(r) => k * (d2.sqrt() - r).powi(2) / 2,
             }
-            ConstraintKind::Velocity { lhs, rhs } => {
-                vec![ConstraintForm::Velocity(l.scalar(lhs)? - l.scalar(rhs)?)]
-            }
-            ConstraintKind::Gear {
-                driver,
-                driven,
-                ratio,
-            } => {
-                let rate = |id: crate::model::CoordinateId| {
-                    l.coordinates
-                        .get(id.index())
-                        .copied()
-                        .flatten()
-                        .map(|x| x.1)
-                        .ok_or(LowerError::Unresolved { span: c.span })
-                };
-                vec![ConstraintForm::Velocity(
-                    rate(*driven)? - l.scalar(ratio)? * rate(*driver)?,
-                )]
-            }
-            ConstraintKind::Rolling { body, contact } => {
-                let b = model.body(*body);
-                let g = l
-                    .points
-                    .get(b.centre.index())
+        }
+        Connection::Scalar(s) => {
+            let s = l.scalar(s)?;
+            k * (s - rest.unwrap_or_else(Cx::zero)).powi(2) / 2
+        }
+    })
+}
+
+/// A damper's dissipation function `c ℓ̇² / 2`.
+fn damper_dissipation(
+    l: &Lowerer<'_>,
+    coefficient: &Expr,
+    connection: &Connection,
+) -> Result<Cx, LowerError> {
+    let c = l.scalar(coefficient)?;
+    let rate2 = match connection {
+        Connection::Points { from, to } => {
+            let (a, b) = (l.rigid(l.vector(from)?), l.rigid(l.vector(to)?));
+            let d: Vector = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let dd: Vector = d.map(Cx::dt);
+            let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            let along = d[0] * dd[0] + d[1] * dd[1] + d[2] * dd[2];
+            along.powi(2) / d2
+        }
+        Connection::Scalar(s) => l.scalar(s)?.dt().powi(2),
+    };
+    Ok(c * rate2 / 2)
+}
+
+/// A constraint's equations.
+fn constraint_equations(
+    l: &Lowerer<'_>,
+    c: &crate::model::Constraint,
+) -> Result<Vec<ConstraintForm>, LowerError> {
+    Ok(match &c.kind {
+        ConstraintKind::Holonomic { lhs, rhs } => {
+            vec![ConstraintForm::Holonomic(l.scalar(lhs)? - l.scalar(rhs)?)]
+        }
+        ConstraintKind::Velocity { lhs, rhs } => {
+            vec![ConstraintForm::Velocity(l.scalar(lhs)? - l.scalar(rhs)?)]
+        }
+        ConstraintKind::Gear {
+            driver,
+            driven,
+            ratio,
+        } => {
+            let rate = |id: crate::model::CoordinateId| {
+                l.coordinates
+                    .get(id.index())
                     .copied()
                     .flatten()
-                    .ok_or(LowerError::Unresolved { span: c.span })?;
-                let p = l
-                    .points
-                    .get(contact.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(LowerError::Unresolved { span: c.span })?;
-                let r = l
-                    .frames
-                    .get(b.frame.index())
-                    .copied()
-                    .flatten()
-                    .ok_or(LowerError::Unresolved { span: c.span })?;
-                let w = angular_velocity(&r);
-                let d: Vector = [p[0] - g[0], p[1] - g[1], p[2] - g[2]];
-                let v: Vector = g.map(Cx::dt);
-                let vp = [
-                    v[0] + w[1] * d[2] - w[2] * d[1],
-                    v[1] + w[2] * d[0] - w[0] * d[2],
-                    v[2] + w[0] * d[1] - w[1] * d[0],
-                ];
-                // Expressed in the body frame the components' coefficients are often constant,
-                // which lets an integrable rolling constraint eliminate a coordinate.
-                (0..3)
-                    .map(|i| {
-                        ConstraintForm::Velocity(
-                            (0..3).map(|k| r[k][i] * vp[k]).sum::<Cx>().normal(),
-                        )
-                    })
-                    .collect()
-            }
-        };
-        system.add_constraint(MConstraint { name, equations });
-    }
-    Ok((system, (l.points, l.frames)))
+                    .map(|x| x.1)
+                    .ok_or(LowerError::Unresolved { span: c.span })
+            };
+            vec![ConstraintForm::Velocity(
+                rate(*driven)? - l.scalar(ratio)? * rate(*driver)?,
+            )]
+        }
+        ConstraintKind::Rolling { body, contact } => rolling_equations(l, c.span, *body, *contact)?,
+    })
+}
+
+/// Rolling without slipping: the contact point's velocity vanishes, in body-frame components.
+fn rolling_equations(
+    l: &Lowerer<'_>,
+    span: Span,
+    body: crate::model::BodyId,
+    contact: crate::model::PointId,
+) -> Result<Vec<ConstraintForm>, LowerError> {
+    let b = l.model.body(body);
+    let point = |id: crate::model::PointId| {
+        l.points
+            .get(id.index())
+            .copied()
+            .flatten()
+            .ok_or(LowerError::Unresolved { span })
+    };
+    let g = point(b.centre)?;
+    let p = point(contact)?;
+    let r = l
+        .frames
+        .get(b.frame.index())
+        .copied()
+        .flatten()
+        .ok_or(LowerError::Unresolved { span })?;
+    let w = angular_velocity(&r);
+    let d: Vector = [p[0] - g[0], p[1] - g[1], p[2] - g[2]];
+    let v: Vector = g.map(Cx::dt);
+    let vp = [
+        v[0] + w[1] * d[2] - w[2] * d[1],
+        v[1] + w[2] * d[0] - w[0] * d[2],
+        v[2] + w[0] * d[1] - w[1] * d[0],
+    ];
+    // Expressed in the body frame the components' coefficients are often constant,
+    // which lets an integrable rolling constraint eliminate a coordinate.
+    Ok((0..3)
+        .map(|i| ConstraintForm::Velocity((0..3).map(|k| r[k][i] * vp[k]).sum::<Cx>().normal()))
+        .collect())
 }
 
 fn angular_velocity(r: &Rotation) -> Vector {

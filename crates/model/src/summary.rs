@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use crate::model::{Connection, ConstraintKind, Load, Model, ReactionTarget};
+use crate::model::{Connection, Constraint, ConstraintKind, Load, Model, ReactionTarget};
 
 /// What a checked model contains, for people.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -49,6 +49,31 @@ impl Model {
                     .map(|motion| format!("{} = {}", c.name.name, self.display(motion)))
             })
             .collect();
+        let loads = self
+            .loads
+            .iter()
+            .map(|item| self.describe_load(&item.load))
+            .collect();
+        let constraints = self
+            .constraints
+            .iter()
+            .map(|c| self.describe_constraint(c))
+            .collect();
+        Summary {
+            degrees_of_freedom: free.len().saturating_sub(holonomic),
+            coordinates: free,
+            driven,
+            bodies: self.describe_bodies(),
+            loads,
+            constraints,
+            holonomic_constraints: holonomic,
+            velocity_constraints: self.constraints.len() - holonomic,
+            reactions: self.describe_reactions(),
+        }
+    }
+
+    /// The particles, then the bodies, one line each.
+    fn describe_bodies(&self) -> Vec<String> {
         let mut bodies: Vec<String> = self
             .particles
             .iter()
@@ -69,47 +94,44 @@ impl Model {
                 self.frame(b.frame).name.name
             )
         }));
-        let loads = self
-            .loads
-            .iter()
-            .map(|item| self.describe_load(&item.load))
-            .collect();
-        let constraints = self
-            .constraints
-            .iter()
-            .map(|c| {
-                let name = c
-                    .name
-                    .as_ref()
-                    .map_or_else(String::new, |n| format!("{}: ", n.name));
-                let what = match &c.kind {
-                    ConstraintKind::Holonomic { lhs, rhs } => {
-                        format!("holonomic, {} = {}", self.display(lhs), self.display(rhs))
-                    }
-                    ConstraintKind::Velocity { lhs, rhs } => {
-                        format!("velocity, {} = {}", self.display(lhs), self.display(rhs))
-                    }
-                    ConstraintKind::Rolling { body, contact } => format!(
-                        "rolling, {} at {}",
-                        self.body(*body).name.name,
-                        self.point(*contact).name.name
-                    ),
-                    ConstraintKind::Gear {
-                        driver,
-                        driven,
-                        ratio,
-                    } => format!(
-                        "gear, {}' = ({})·{}'",
-                        self.coordinate(*driven).name.name,
-                        self.display(ratio),
-                        self.coordinate(*driver).name.name
-                    ),
-                };
-                format!("{name}{what}")
-            })
-            .collect();
-        let reactions = self
-            .reactions
+        bodies
+    }
+
+    /// One constraint's line: its name, if any, its kind and its equation.
+    fn describe_constraint(&self, c: &Constraint) -> String {
+        let name = c
+            .name
+            .as_ref()
+            .map_or_else(String::new, |n| format!("{}: ", n.name));
+        let what = match &c.kind {
+            ConstraintKind::Holonomic { lhs, rhs } => {
+                format!("holonomic, {} = {}", self.display(lhs), self.display(rhs))
+            }
+            ConstraintKind::Velocity { lhs, rhs } => {
+                format!("velocity, {} = {}", self.display(lhs), self.display(rhs))
+            }
+            ConstraintKind::Rolling { body, contact } => format!(
+                "rolling, {} at {}",
+                self.body(*body).name.name,
+                self.point(*contact).name.name
+            ),
+            ConstraintKind::Gear {
+                driver,
+                driven,
+                ratio,
+            } => format!(
+                "gear, {}' = ({})·{}'",
+                self.coordinate(*driven).name.name,
+                self.display(ratio),
+                self.coordinate(*driver).name.name
+            ),
+        };
+        format!("{name}{what}")
+    }
+
+    /// The reactions asked for, then the releases.
+    fn describe_reactions(&self) -> Vec<String> {
+        self.reactions
             .iter()
             .map(|r| match r {
                 ReactionTarget::Constraint(id) => {
@@ -136,18 +158,7 @@ impl Model {
                     self.point(r.point).name.name
                 )
             }))
-            .collect();
-        Summary {
-            degrees_of_freedom: free.len().saturating_sub(holonomic),
-            coordinates: free,
-            driven,
-            bodies,
-            loads,
-            constraints,
-            holonomic_constraints: holonomic,
-            velocity_constraints: self.constraints.len() - holonomic,
-            reactions,
-        }
+            .collect()
     }
 
     fn describe_load(&self, load: &Load) -> String {
