@@ -659,20 +659,16 @@ fn exact_equilibria(
             continue;
         };
         wrap(rest, &mut x);
-        if !is_rest_state(rest, &x, values) {
-            continue;
-        }
-        if found
-            .iter()
-            .any(|e| same_point(&e.values, &x, &rest.periodic))
-        {
-            continue;
-        }
-        found.push(Equilibrium {
-            values: x,
-            exact: Some(b.values.clone()),
-            conditions: b.conditions.clone(),
-        });
+        add_if_new(
+            &mut found,
+            rest,
+            values,
+            Equilibrium {
+                values: x,
+                exact: Some(b.values.clone()),
+                conditions: b.conditions.clone(),
+            },
+        );
     }
     found
 }
@@ -737,6 +733,21 @@ fn numeric_equilibria(
 }
 
 /// Whether two points are the same equilibrium (angles modulo 2π).
+/// Keeps `candidate` when it is a rest state and not one already found.
+fn add_if_new(
+    found: &mut Vec<Equilibrium>,
+    rest: &RestEquations,
+    values: &Values,
+    candidate: Equilibrium,
+) {
+    let repeated = found
+        .iter()
+        .any(|e| same_point(&e.values, &candidate.values, &rest.periodic));
+    if !repeated && is_rest_state(rest, &candidate.values, values) {
+        found.push(candidate);
+    }
+}
+
 fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
     a.iter().zip(b).zip(periodic).all(|((x, y), p)| {
         let d = if *p {
@@ -798,20 +809,16 @@ fn polynomial_equilibria(
         if !p.half_angle && (x[i] < bounds[i].0 || x[i] > bounds[i].1) {
             continue;
         }
-        if !is_rest_state(rest, &x, values) {
-            continue;
-        }
-        if found
-            .iter()
-            .any(|e| same_point(&e.values, &x, &rest.periodic))
-        {
-            continue;
-        }
-        found.push(Equilibrium {
-            values: x,
-            exact: None,
-            conditions: Vec::new(),
-        });
+        add_if_new(
+            &mut found,
+            rest,
+            values,
+            Equilibrium {
+                values: x,
+                exact: None,
+                conditions: Vec::new(),
+            },
+        );
     }
     Some(found)
 }
