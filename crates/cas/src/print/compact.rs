@@ -61,7 +61,10 @@ impl Compactor {
                 let terms: Vec<Expr> = terms.iter().map(|t| self.run(*t)).collect();
                 regroup_sum(terms)
             }
-            Node::Mul(f) => Expr::mul_all(f.iter().map(|x| self.run(*x)).collect::<Vec<_>>()),
+            Node::Mul(f) => {
+                let factors: Vec<Expr> = f.iter().map(|x| self.run(*x)).collect();
+                Expr::mul_all(balance_signs(factors))
+            }
             Node::Pow([b, x]) => self.run(*b).pow(self.run(*x)),
             Node::Func(f, args) => {
                 let args: Vec<Expr> = args.iter().map(|a| self.run(*a)).collect();
@@ -71,6 +74,77 @@ impl Compactor {
         self.memo.insert(e, r);
         r
     }
+}
+
+/// The sign normaliser of a product, so that a minus is written once: a sum factor whose terms
+/// are all negative gives its sign to the product (`(−k1 − 2 k2) x` → `−(k1 + 2 k2) x`,
+/// `/(−2 m − 3 M)` → `−…/(2 m + 3 M)`); then, if the product is negative, one sum factor that
+/// would print with a leading minus takes the sign back (`−(−a + b)` → `(a − b)`).
+fn balance_signs(factors: Vec<Expr>) -> Vec<Expr> {
+    let mut negative = false;
+    // A compacted factor may itself be a product (`m g (…)`): its factors are this product's.
+    let mut out: Vec<Expr> = factors
+        .into_iter()
+        .flat_map(|f| match f.node() {
+            Node::Mul(inner) => inner.to_vec(),
+            _ => vec![f],
+        })
+        .map(|f| match signed_sum(f) {
+            Some((terms, odd)) if terms.iter().all(|t| split_coefficient(*t).0.is_negative()) => {
+                negative ^= odd;
+                negate_sum(f, &terms)
+            }
+            _ => f,
+        })
+        .collect();
+    let coefficient_negative = out
+        .iter()
+        .filter_map(|f| f.as_number())
+        .fold(false, |n, c| n ^ c.is_negative());
+    if negative ^ coefficient_negative {
+        let leading = out
+            .iter()
+            .position(|f| signed_sum(*f).is_some_and(|(terms, odd)| odd && leads_negative(&terms)));
+        if let Some(i) = leading {
+            let terms = signed_sum(out[i]).map(|(t, _)| t).unwrap_or_default();
+            out[i] = negate_sum(out[i], &terms);
+            negative = !negative;
+        }
+    }
+    if negative {
+        out.push(Expr::number(Number::int(-1)));
+    }
+    out
+}
+
+/// A factor that is a sum or an integer power of one: its terms, and whether the power is odd.
+fn signed_sum(f: Expr) -> Option<(Vec<Expr>, bool)> {
+    let (base, exp) = split_power(f);
+    let k = exp.as_number().and_then(Number::to_i64)?;
+    match base.node() {
+        Node::Add(terms) => Some((terms.to_vec(), k % 2 != 0)),
+        _ => None,
+    }
+}
+
+/// The factor `f` (a sum `terms` or a power of it) with the sum negated.
+fn negate_sum(f: Expr, terms: &[Expr]) -> Expr {
+    let (_, exp) = split_power(f);
+    let negated = Expr::add_all(terms.iter().map(|t| -*t).collect::<Vec<_>>());
+    if exp.is_literal_one() {
+        negated
+    } else {
+        negated.pow(exp)
+    }
+}
+
+/// Whether a sum, in the order it is printed, begins with a negative term.
+fn leads_negative(terms: &[Expr]) -> bool {
+    let mut sorted = terms.to_vec();
+    super::order::sort_terms(&mut sorted);
+    sorted
+        .first()
+        .is_some_and(|t| split_coefficient(*t).0.is_negative())
 }
 
 /// `cos(−u) = cos u`, `sin(−u) = −sin u`, `tan(−u) = −tan u`: an angle is printed with a
@@ -382,7 +456,10 @@ fn collect_by_time_part(terms: Vec<Expr>) -> Vec<Expr> {
                     Expr::mul_all([Expr::number(c)].into_iter().chain(parameters))
                 })
                 .collect();
-            Expr::mul_all([regroup_sum(parts), Expr::mul_all(dynamic)])
+            Expr::mul_all(balance_signs(vec![
+                regroup_sum(parts),
+                Expr::mul_all(dynamic),
+            ]))
         })
         .collect()
 }
@@ -473,5 +550,5 @@ fn pull_common_factor(terms: Vec<Expr>) -> Expr {
     } else {
         Expr::add_all(inner)
     };
-    Expr::mul_all(divisor.into_iter().chain([inner]))
+    Expr::mul_all(balance_signs(divisor.into_iter().chain([inner]).collect()))
 }

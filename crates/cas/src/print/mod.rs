@@ -245,6 +245,38 @@ mod tests {
     }
 
     #[test]
+    fn a_minus_sign_is_written_once_in_front() {
+        let (a, b, c, d, x) = (s("a"), s("b"), s("c"), s("d"), q("x"));
+        // A sum of negative terms gives its sign to the product.
+        assert_eq!(to_unicode((-a - b) * x), "−(a + b) x");
+        assert_eq!(to_unicode(x / (-c - d)), "−x/(c + d)");
+        // Whatever the signs, no `−(−…` and no `/(−…`, and the value stays.
+        let sums = [a - b, b - a, -a - b, a + b, -a + b * x];
+        for (i, p) in sums.iter().enumerate() {
+            for (j, r) in sums.iter().enumerate() {
+                for e in [-*p * x, *p * x / *r, -*p / *r, *p * x * (c + d) / (-*r)] {
+                    let text = to_unicode(e);
+                    assert!(!text.contains("−(−"), "{i} {j}: {text}");
+                    assert!(!text.contains("/(−"), "{i} {j}: {text}");
+                    let at = |e: Expr| {
+                        e.eval(&|s: crate::Symbol| {
+                            Some(match s.name() {
+                                "a" => 0.3,
+                                "b" => -1.7,
+                                "c" => 2.1,
+                                "d" => 0.4,
+                                _ => 1.3,
+                            })
+                        })
+                        .unwrap()
+                    };
+                    assert!((at(e) - at(super::compact(e))).abs() < 1e-12, "{text}");
+                }
+            }
+        }
+    }
+
+    #[test]
     fn small_forms_in_each_dialect() {
         let (x, y, th) = (s("x"), s("y"), q("theta"));
         let cases: Vec<(Expr, &str, &str, &str)> = vec![
