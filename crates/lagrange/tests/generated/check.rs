@@ -21,6 +21,7 @@ pub const TOLERANCE: f64 = 1e-8;
 pub struct Tally {
     pub states: usize,
     pub ill_conditioned: usize,
+    /// First integrals checked, summed over the states.
     pub integrals: usize,
     pub simulated: bool,
 }
@@ -120,7 +121,7 @@ pub fn check(model: &Model, seed: u64, states: usize) -> Result<Tally, String> {
             .with_rhs(|system| system.rhs(s.t, &state, &mut derivative))
             .map_err(|e| format!("compiled right-hand side: {e}"))?;
         compare("compiled q̈", &derivative[n..], &expected, &s)?;
-        tally.integrals = check_integrals(equations, &lagrange, &s, &numeric, &expected)?;
+        tally.integrals += check_integrals(equations, &lagrange, &s, &numeric, &expected)?;
     }
     if let Some(kind) = model.integral {
         conserved(
