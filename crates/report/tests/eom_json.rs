@@ -5,7 +5,8 @@
 //!
 //! With `LAGRANGE_JSON_NUMBERS=DIR` set, every string's value at those states is written to
 //! `DIR/<model>.json` for `tools/json_sympy/check.py`, which checks that SymPy reads each
-//! string to the same number.
+//! string to the same number; with `LAGRANGE_JSON_MODELS=DIR`, the `*.lag` files in `DIR`
+//! are checked beside the examples (check.sh puts generated models there).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -30,6 +31,10 @@ fn examples() -> Vec<PathBuf> {
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples"),
         &mut found,
     );
+    // More models, such as the generated ones tools/json_sympy/check.sh writes.
+    if let Some(extra) = std::env::var_os("LAGRANGE_JSON_MODELS") {
+        walk(Path::new(&extra), &mut found);
+    }
     found.sort();
     found
 }
