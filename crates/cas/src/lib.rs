@@ -47,7 +47,10 @@ pub use calculus::NotASymbol;
 pub use eval::EvalError;
 pub use expr::{arena_len, Constant, Expr, Func, Name, Node, Symbol, SymbolKind};
 pub use form::NormalForm;
-pub use limits::{set_work_limits, work_limits, WorkLimitError, WorkLimits};
+pub use limits::{
+    limit_hit, limited, run_limited, set_work_limits, with_work_limits, work_limits,
+    WorkLimitError, WorkLimits,
+};
 pub use matrix::{Matrix, SolveError};
 pub use number::{LiteralError, Number, MAX_LITERAL_EXPONENT};
 pub use parse::{parse, ParseContext, ParseError};

@@ -388,7 +388,13 @@ impl Number {
                 }
             }
             (Number::Float(x), o) | (o, Number::Float(x)) => Number::Float(x + o.to_f64()),
-            _ => self.big_op(other, |x, y| x + y),
+            _ => self.big_op(other, |x, y| {
+                if x.is_integer() && y.is_integer() {
+                    BigRational::from_integer(x.to_integer() + y.to_integer())
+                } else {
+                    x + y
+                }
+            }),
         }
     }
 
@@ -413,7 +419,17 @@ impl Number {
                 }
             }
             (Number::Float(x), o) | (o, Number::Float(x)) => Number::Float(x * o.to_f64()),
-            _ => self.big_op(other, |x, y| x * y),
+            // Integers multiply without the rational cross-reduction: `num_rational` takes
+            // `gcd(n, 1)` by Stein's algorithm, one shift of the whole number per bit, which
+            // made the coefficient products of a GCD's remainder sequence quadratic in their
+            // size (the four-bar's reactions spent most of 5 s there).
+            _ => self.big_op(other, |x, y| {
+                if x.is_integer() && y.is_integer() {
+                    BigRational::from_integer(x.to_integer() * y.to_integer())
+                } else {
+                    x * y
+                }
+            }),
         }
     }
 

@@ -377,6 +377,7 @@ impl Poly {
         if other.is_zero() {
             return self.clone();
         }
+        limits::spend((self.terms.len() + other.terms.len()) as u64);
         let mut out = Vec::with_capacity(self.terms.len() + other.terms.len());
         let (mut i, mut j) = (0, 0);
         let (a, b) = (&self.terms, &other.terms);
@@ -457,6 +458,13 @@ impl Poly {
         } else {
             (other, self)
         };
+        let weight = coefficient_weight(small) * coefficient_weight(large);
+        let work = (small.terms.len() as u64)
+            .saturating_mul(large.terms.len() as u64)
+            .saturating_mul(weight);
+        if !limits::spend(work) {
+            return Poly::zero();
+        }
         if let [(mono, coefficient)] = small.terms.as_slice() {
             if !limits::terms_ok(large.terms.len()) {
                 return Poly::zero();
@@ -550,6 +558,24 @@ impl Poly {
                 return Poly::zero();
             }
         }
+        if let Some(p) = self.binomial_pow(k) {
+            return p;
+        }
+        if let [(m, c)] = self.terms.as_slice() {
+            // One term: its power is one term, rewritten once (`sin^k` becomes
+            // `sin^(k mod 2) (1 − cos²)^(k div 2)` by the binomial rule, not by squaring sums).
+            // The coefficient's power has about `k` times its size.
+            if !c.is_one() && !limits::spend(u64::from(k) * c.size_hint() as u64) {
+                return Poly::zero();
+            }
+            let exponents: Option<Monomial> = m
+                .iter()
+                .map(|&(x, e)| Some((x, e.checked_mul(k)?)))
+                .collect();
+            if let (Some(m), Some(c)) = (exponents, c.powi(i64::from(k))) {
+                return rewrite_term(m, c);
+            }
+        }
         let mut result = Poly::one();
         let mut base = self.clone();
         let mut e = k;
@@ -563,6 +589,49 @@ impl Poly {
             }
         }
         result
+    }
+
+    /// `(a + b)^k = Σ C(k, i) a^i b^(k−i)` for two terms free of rewriting rules: `k + 1`
+    /// terms with `O(k)` coefficient products. Binary powering squares dense polynomials
+    /// (`k²/2` products of coefficients with up to `k` bits; `sin(x)^10000`, that is
+    /// `(1 − cos² x)^5000`, took minutes). `None` when the rule does not apply.
+    fn binomial_pow(&self, k: u32) -> Option<Poly> {
+        let [(ma, ca), (mb, cb)] = self.terms.as_slice() else {
+            return None;
+        };
+        let plain = |m: &Monomial| m.iter().all(|&(x, _)| x >> KIND_SHIFT == KIND_PLAIN);
+        if k < 3 || !plain(ma) || !plain(mb) || ca.is_float() || cb.is_float() {
+            return None;
+        }
+        let top = ma.iter().chain(mb).map(|&(_, e)| e).max().unwrap_or(0);
+        top.checked_mul(k)?;
+        let power = |m: &Monomial, i: u32| -> Monomial {
+            if i == 0 {
+                return Monomial::new();
+            }
+            m.iter().map(|&(x, e)| (x, e * i)).collect()
+        };
+        // Coefficient powers of `cb` from the top down, so each term costs two products.
+        let mut cb_powers = Vec::with_capacity(k as usize + 1);
+        let mut c = Number::ONE;
+        for _ in 0..=k {
+            cb_powers.push(c.clone());
+            c = c.mul(cb);
+        }
+        if !limits::spend(u64::from(k) * cb_powers[k as usize].size_hint() as u64) {
+            return Some(Poly::zero());
+        }
+        let mut terms = Vec::with_capacity(k as usize + 1);
+        let (mut binomial, mut ca_power) = (Number::ONE, Number::ONE);
+        for i in 0..=k {
+            let coefficient = binomial.mul(&ca_power).mul(&cb_powers[(k - i) as usize]);
+            terms.push((mul_monomials(&power(ma, i), &power(mb, k - i)), coefficient));
+            binomial = binomial
+                .mul(&Number::int(i64::from(k - i)))
+                .div(&Number::int(i64::from(i) + 1))?;
+            ca_power = ca_power.mul(ca);
+        }
+        Some(Poly::from_terms(terms))
     }
 
     /// The atoms that occur, sorted by id.
@@ -671,7 +740,7 @@ impl Poly {
                 }
             }
             quotient.push((qm, qc));
-            if quotient.len() > 1_000_000 {
+            if quotient.len() > 1_000_000 || !limits::spend(divisor.terms.len() as u64) {
                 return None;
             }
         }
@@ -697,6 +766,7 @@ impl Poly {
     /// that `self / content` has integer coefficients with gcd 1 and a positive leading one.
     pub(crate) fn content(&self) -> Number {
         let mut g = Number::ZERO;
+        limits::spend(self.terms.len() as u64 * coefficient_weight(self));
         for (_, c) in &self.terms {
             if c.is_float() {
                 return Number::ONE;
@@ -720,6 +790,21 @@ impl Poly {
             _ => self.clone(),
         }
     }
+}
+
+/// The cost of one coefficient product relative to small numbers: the size of a typical big
+/// coefficient of `p` (the first, middle and last terms; the middle of a binomial power holds
+/// its largest coefficients), in 64-bit words.
+fn coefficient_weight(p: &Poly) -> u64 {
+    let t = &p.terms;
+    if t.is_empty() {
+        return 1;
+    }
+    [0, t.len() / 2, t.len() - 1]
+        .iter()
+        .map(|&i| t[i].1.size_hint() as u64)
+        .max()
+        .unwrap_or(1)
 }
 
 /// Adds `c m` to a map of terms.
@@ -790,6 +875,7 @@ fn gcd_budget_spent() -> bool {
 }
 
 fn spend_gcd_work(ops: usize) {
+    limits::spend(ops as u64);
     GCD_WORK.with(|w| {
         let (left, depth) = w.get();
         w.set((left - ops as i64, depth));

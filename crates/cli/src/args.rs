@@ -12,6 +12,10 @@ pub struct Cli {
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
+    /// Multiply the limits of the symbolic work (terms, degree, total work; docs/cas.md) by
+    /// FACTOR: `--work-limit 10` lets a derivation that stopped at a limit go ten times as far.
+    #[arg(long, global = true, value_name = "FACTOR")]
+    pub work_limit: Option<f64>,
 }
 
 /// The subcommands.

@@ -63,8 +63,18 @@ impl Failure {
             _ => Exit::Mechanics,
         };
         let color = std::io::stderr().is_terminal();
-        let message = error.render(&file, model::RenderOptions::default().with_color(color));
+        let mut message = error.render(&file, model::RenderOptions::default().with_color(color));
+        if error.work_limit().is_some() {
+            message.push_str(WORK_LIMIT_HELP);
+        }
         Failure { code, message }
+    }
+
+    /// A work limit of the symbolic core hit outside a model (`simplify`).
+    pub fn work_limit(error: &lagrange::cas::WorkLimitError) -> Failure {
+        let mut failure = Failure::new(Exit::Mechanics, error);
+        failure.message.push_str(WORK_LIMIT_HELP);
+        failure
     }
 
     /// The same failure with `what: ` before its message (a flag's name).
@@ -85,6 +95,10 @@ impl Failure {
         self.code.into()
     }
 }
+
+/// How to go past a work limit, after its message.
+const WORK_LIMIT_HELP: &str =
+    "\nhelp: `--work-limit 10` allows ten times as much symbolic work (terms, degree, operations)";
 
 /// Writes `text` to standard output; a write error (a full disk) is [`Exit::Output`].
 pub fn print(text: &str) -> Result<(), Failure> {

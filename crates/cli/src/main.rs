@@ -24,6 +24,15 @@ fn main() -> ExitCode {
             return code.into();
         }
     };
+    if let Some(factor) = cli.work_limit {
+        if !(factor.is_finite() && factor > 0.0) {
+            return exit::Failure::input(format!(
+                "--work-limit: {factor} is not a positive factor; give a number such as 10"
+            ))
+            .report();
+        }
+        lagrange::cas::set_work_limits(lagrange::cas::WorkLimits::default().scaled(factor));
+    }
     match commands::run(cli.command) {
         Ok(code) => code.into(),
         Err(failure) => failure.report(),

@@ -36,6 +36,8 @@ pub struct Analysis {
     initial: Vec<(String, bool, f64)>,
     /// Reactions asked for in code (a model's come from its text).
     requests: Option<Vec<ReactionRequest>>,
+    /// The limits of the symbolic work (`None`: the process-wide ones).
+    work_limits: Option<cas::WorkLimits>,
     equations: OnceLock<Result<Equations, Error>>,
     derivations: AtomicUsize,
     /// How many times reactions were derived (all of them, or the one-sided ones alone).
@@ -52,6 +54,7 @@ impl Clone for Analysis {
         copy.timed_inputs.clone_from(&self.timed_inputs);
         copy.initial.clone_from(&self.initial);
         copy.requests.clone_from(&self.requests);
+        copy.work_limits = self.work_limits;
         if let Some(Ok(equations)) = self.equations.get() {
             let _ = copy.equations.set(Ok(equations.clone()));
         }
@@ -71,6 +74,7 @@ impl Analysis {
             timed_inputs: Vec::new(),
             initial: Vec::new(),
             requests: None,
+            work_limits: None,
             equations: OnceLock::new(),
             derivations: AtomicUsize::new(0),
             reaction_derivations: AtomicUsize::new(0),
@@ -262,16 +266,115 @@ impl Analysis {
         self.reactions = OnceLock::new();
     }
 
+    /// Sets the limits of the symbolic work of this analysis' derivations (the default:
+    /// `cas::work_limits()`, process-wide). What was already derived is kept; a derivation
+    /// stopped by a limit ([`Error::WorkLimit`]) is tried again with the new limits.
+    pub fn set_work_limits(&mut self, limits: cas::WorkLimits) {
+        self.work_limits = Some(limits);
+        let stopped =
+            |r: Option<&Result<_, Error>>| matches!(r, Some(Err(e)) if e.work_limit().is_some());
+        if stopped(self.equations.get()) {
+            self.equations = OnceLock::new();
+        }
+        if matches!(self.reactions.get(), Some(Err(e)) if e.work_limit().is_some()) {
+            self.reactions = OnceLock::new();
+        }
+        if matches!(self.equilibria.get(), Some(Err(e)) if e.work_limit().is_some()) {
+            self.equilibria = OnceLock::new();
+        }
+    }
+
+    /// `f` under this analysis' work limits.
+    pub(crate) fn within_limits<T>(&self, f: impl FnOnce() -> T) -> T {
+        match self.work_limits {
+            Some(limits) => cas::with_work_limits(limits, f),
+            None => f(),
+        }
+    }
+
+    /// `f` as one limited scope of the symbolic core under this analysis' work limits: past a
+    /// limit, the located error of a derivation inside, or [`Error::WorkLimit`] saying `what`
+    /// was under way.
+    pub(crate) fn limited<T>(
+        &self,
+        what: &str,
+        f: impl FnOnce() -> Result<T, Error>,
+    ) -> Result<T, Error> {
+        self.within_limits(|| match cas::run_limited(f) {
+            (result, None) => result,
+            (Err(e), Some(_)) if e.work_limit().is_some() => Err(e),
+            (_, Some(error)) => Err(Error::WorkLimit {
+                message: format!("{what}: {error}"),
+                error,
+                at: None,
+            }),
+        })
+    }
+
+    /// A work limit hit in the mechanics as [`Error::WorkLimit`], located at the model
+    /// statement of the part that was being derived; other errors as they are.
+    pub(crate) fn locate_work_limit(&self, error: Error) -> Error {
+        use mechanics::{MechanicsError as M, ReactionError as R};
+        let (part, limit) = match &error {
+            Error::Mechanics(M::WorkLimit { part, error })
+            | Error::Reactions(R::Mechanics {
+                source: M::WorkLimit { part, error },
+                ..
+            }) => (part.clone(), error.clone()),
+            Error::Reactions(R::WorkLimit(error)) => (None, error.clone()),
+            _ => return error,
+        };
+        let at = part.and_then(|p| self.statement_of(&p));
+        Error::WorkLimit {
+            message: error.to_string(),
+            error: limit,
+            at,
+        }
+    }
+
+    /// Line and column of the model statement a part of the system comes from.
+    fn statement_of(&self, part: &mechanics::Part) -> Option<(usize, usize)> {
+        let source = self.source.as_ref()?;
+        let model = &source.model;
+        let span = match part {
+            mechanics::Part::Particle(name) => {
+                model
+                    .particles()
+                    .iter()
+                    .find(|p| &model.point(p.point).name.name == name)?
+                    .span
+            }
+            mechanics::Part::Body(name) => {
+                model
+                    .bodies()
+                    .iter()
+                    .find(|b| &b.name.name == name)?
+                    .name
+                    .span
+            }
+            // Loads that do no virtual work are not lowered; then the indices differ.
+            mechanics::Part::Load(index) if model.loads().len() == self.system.loads().len() => {
+                model.loads().get(*index)?.span
+            }
+            _ => return None,
+        };
+        let at = model::line_col(&source.text, span.start);
+        Some((at.line, at.column))
+    }
+
     /// The equations of motion (Lagrange II), derived once.
     ///
     /// # Errors
-    /// [`Error::Mechanics`] when the system is degenerate (a singular mass matrix, …), or
-    /// [`Error::Constraints`] naming constraints that contradict or restate one another.
+    /// [`Error::Mechanics`] when the system is degenerate (a singular mass matrix, …),
+    /// [`Error::Constraints`] naming constraints that contradict or restate one another, or
+    /// [`Error::WorkLimit`] when the derivation outgrows the work limits.
     pub fn equations(&self) -> Result<&Equations, Error> {
         self.equations
             .get_or_init(|| {
                 self.derivations.fetch_add(1, Ordering::Relaxed);
-                let equations = mechanics::derive(&self.system)?;
+                let equations = self
+                    .within_limits(|| mechanics::derive(&self.system))
+                    .map_err(|e| self.locate_work_limit(e.into()))?;
                 // Constraints that contradict or restate one another leave the multipliers
                 // undetermined: nothing downstream is meaningful.
                 match mechanics::constraint_conflict(&self.system, &equations) {

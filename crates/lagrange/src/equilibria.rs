@@ -162,13 +162,15 @@ impl Analysis {
     /// # Errors
     /// As [`Analysis::equilibria`], or an unknown coordinate in a range.
     pub fn equilibria_with(&self, search: &Search) -> Result<Equilibria, Error> {
-        let prepared = self.prepare_equilibria(search)?;
-        let (set, linearized) = prepared.at(&prepared.values)?;
-        Ok(Equilibria {
-            rest: prepared.rest,
-            set,
-            linearized,
-            inputs: prepared.inputs,
+        self.limited("finding the equilibria", || {
+            let prepared = self.prepare_equilibria(search)?;
+            let (set, linearized) = prepared.at(&prepared.values)?;
+            Ok(Equilibria {
+                rest: prepared.rest,
+                set,
+                linearized,
+                inputs: prepared.inputs,
+            })
         })
     }
 
@@ -178,6 +180,17 @@ impl Analysis {
     /// # Errors
     /// As [`Analysis::equilibria_with`], or an unknown name.
     pub fn equilibrium_sweep(
+        &self,
+        search: &Search,
+        range: &Range,
+        steps: usize,
+    ) -> Result<EquilibriumSweep, Error> {
+        self.limited("sweeping the equilibria", || {
+            self.sweep_equilibria(search, range, steps)
+        })
+    }
+
+    fn sweep_equilibria(
         &self,
         search: &Search,
         range: &Range,

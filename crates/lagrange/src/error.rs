@@ -111,6 +111,17 @@ pub enum Error {
     /// lagrange disagrees with itself.
     #[error("internal inconsistency (a bug of lagrange): {0}")]
     Inconsistent(String),
+    /// The symbolic work went past a limit of the symbolic core (`cas::WorkLimits`, raised
+    /// with [`crate::Analysis::set_work_limits`]).
+    #[error("{message}")]
+    WorkLimit {
+        /// What was being derived and the limit hit.
+        message: String,
+        /// The limit hit.
+        error: cas::WorkLimitError,
+        /// Line and column (1-based) of the model statement being derived, when known.
+        at: Option<(usize, usize)>,
+    },
 }
 
 impl Error {
@@ -134,8 +145,22 @@ impl Error {
                 column,
                 ..
             } => format!("error: {file}:{line}:{column}: {message}"),
+            Error::WorkLimit {
+                message,
+                at: Some((line, column)),
+                ..
+            } => format!("error: {file}:{line}:{column}: {message}"),
             Error::Read { .. } => format!("error: {self}"),
             _ => format!("error: {file}: {self}"),
+        }
+    }
+
+    /// The work limit hit, when this error is one.
+    #[must_use]
+    pub fn work_limit(&self) -> Option<&cas::WorkLimitError> {
+        match self {
+            Error::WorkLimit { error, .. } => Some(error),
+            _ => None,
         }
     }
 

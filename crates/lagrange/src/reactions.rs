@@ -56,7 +56,9 @@ impl Analysis {
         }
         let equations = self.equations()?;
         self.reaction_derivations.fetch_add(1, Ordering::Relaxed);
-        let reactions = mechanics::reactions_of(self.system(), equations, &requests)?;
+        let reactions = self
+            .within_limits(|| mechanics::reactions_of(self.system(), equations, &requests))
+            .map_err(|e| self.locate_work_limit(e.into()))?;
         let unilateral = reactions
             .iter()
             .map(|r| {
@@ -101,11 +103,10 @@ impl Analysis {
                 }
                 let equations = self.equations()?;
                 self.reaction_derivations.fetch_add(1, Ordering::Relaxed);
-                Ok(along(&mechanics::reactions_of(
-                    self.system(),
-                    equations,
-                    &requests,
-                )?))
+                let reactions = self
+                    .within_limits(|| mechanics::reactions_of(self.system(), equations, &requests))
+                    .map_err(|e| self.locate_work_limit(e.into()))?;
+                Ok(along(&reactions))
             })
             .as_ref()
             .map(Vec::as_slice)

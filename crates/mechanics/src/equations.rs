@@ -1,7 +1,9 @@
 //! Kinematics, energies, generalized forces and Lagrange's equations of the second kind:
 //! `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j − Q_j = 0`, gathered as `M(q,t) q̈ = f(q,q̇,t)`.
 
-use cas::{Expr, Matrix, NormalForm, SolveError, Symbol};
+use std::cell::Cell;
+
+use cas::{Expr, Matrix, NormalForm, SolveError, Symbol, WorkLimitError};
 
 use crate::system::{ConstraintForm, Load, Rotation, System, Vector};
 
@@ -31,6 +33,47 @@ pub enum MechanicsError {
     /// The model has no independent coordinate left.
     #[error("no independent coordinate is left")]
     NoCoordinates,
+    /// The symbolic work went past a limit of the symbolic core ([`cas::WorkLimits`]).
+    #[error("{}: {error}", part.as_ref().map_or_else(|| "deriving the equations of motion".to_string(), |p| format!("deriving the {p}")))]
+    WorkLimit {
+        /// The part of the system being derived when the limit was hit (`None`: the equations
+        /// as a whole, past the parts).
+        part: Option<Part>,
+        /// The limit hit.
+        error: WorkLimitError,
+    },
+}
+
+/// A part of a [`System`] whose derivation can be told apart (for [`MechanicsError::WorkLimit`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Part {
+    /// The kinetic energy of the particle at this point.
+    Particle(String),
+    /// The kinetic energy of this body.
+    Body(String),
+    /// The potential of the load with this index in [`System::loads`].
+    Load(usize),
+}
+
+impl std::fmt::Display for Part {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Part::Particle(p) => write!(f, "kinetic energy of particle `{p}`"),
+            Part::Body(b) => write!(f, "kinetic energy of body `{b}`"),
+            Part::Load(i) => write!(f, "potential of load {}", i + 1),
+        }
+    }
+}
+
+/// Which part of the system is being derived, for the error of a work limit: the first part
+/// during which the limit was hit.
+type Progress = Cell<Option<Part>>;
+
+fn working_on(progress: &Progress, part: Option<Part>) {
+    if cas::limit_hit().is_none() {
+        progress.set(part);
+    }
 }
 
 /// A coordinate eliminated by an integrable velocity constraint.
@@ -311,10 +354,30 @@ pub(crate) fn derive_with(
     derive_all(system, check_mass_matrix, true)
 }
 
+/// [`derive_limited`] within the work limits of the symbolic core ([`cas::limited`]).
 fn derive_all(
     system: &System,
     check_mass_matrix: bool,
     first_integrals_wanted: bool,
+) -> Result<Equations, MechanicsError> {
+    let progress = Progress::new(None);
+    let (result, hit) = cas::run_limited(|| {
+        derive_limited(system, check_mass_matrix, first_integrals_wanted, &progress)
+    });
+    match hit {
+        None => result,
+        Some(error) => Err(MechanicsError::WorkLimit {
+            part: progress.take(),
+            error,
+        }),
+    }
+}
+
+fn derive_limited(
+    system: &System,
+    check_mass_matrix: bool,
+    first_integrals_wanted: bool,
+    progress: &Progress,
 ) -> Result<Equations, MechanicsError> {
     let mut system = system.clone();
     let mut eliminated = Vec::new();
@@ -324,8 +387,9 @@ fn derive_all(
         return Err(MechanicsError::NoCoordinates);
     }
     let vars = Variables::of(&coordinates);
-    let (kinetic, omegas) = kinetic_energy(&system);
-    let (potential, forces) = potential_and_forces(&system, &omegas, &vars);
+    let (kinetic, omegas) = kinetic_energy(&system, progress);
+    let (potential, forces) = potential_and_forces(&system, &omegas, &vars, progress);
+    working_on(progress, None);
     let lagrangian = (kinetic - potential).normal();
     let rows = lagrange_rows(lagrangian, &forces, &vars, &coordinates)?;
     if check_mass_matrix {
@@ -402,18 +466,20 @@ fn partial(e: Expr, s: Option<Symbol>) -> Expr {
 }
 
 /// `K = Σ ½ m v² + Σ (½ m v_G² + ½ ω_Bᵀ I_G ω_B)`, and each body's angular velocity.
-fn kinetic_energy(system: &System) -> (Expr, Vec<Vector>) {
-    let mut kinetic = Expr::zero();
+///
+/// Each part's term is brought to normal form on its own, so that a work limit is hit (and
+/// reported) at the particle or body whose term outgrows it.
+fn kinetic_energy(system: &System, progress: &Progress) -> (Expr, Vec<Vector>) {
+    let mut kinetic = NormalForm::zero();
     for p in system.particles() {
+        working_on(progress, Some(Part::Particle(p.name.clone())));
         let v: Vector = p.position.map(|x| x.dt().normal());
-        kinetic += p.mass * dot(&v, &v) / 2;
+        kinetic = kinetic.add(&(p.mass * dot(&v, &v) / 2).normal_form());
     }
-    let omegas: Vec<Vector> = system
-        .bodies()
-        .iter()
-        .map(|b| angular_velocity(&b.rotation))
-        .collect();
-    for (b, w) in system.bodies().iter().zip(&omegas) {
+    let mut omegas: Vec<Vector> = Vec::with_capacity(system.bodies().len());
+    for b in system.bodies() {
+        working_on(progress, Some(Part::Body(b.name.clone())));
+        let w = &angular_velocity(&b.rotation);
         let v: Vector = b.centre.map(|x| x.dt().normal());
         let r = &b.rotation;
         let wb: Vec<Expr> = (0..3)
@@ -425,28 +491,46 @@ fn kinetic_energy(system: &System) -> (Expr, Vec<Vector>) {
                 rot += wb[i] * b.inertia[i][j] * wb[j];
             }
         }
-        kinetic += b.mass * dot(&v, &v) / 2 + rot / 2;
+        kinetic = kinetic.add(&(b.mass * dot(&v, &v) / 2 + rot / 2).normal_form());
+        omegas.push(*w);
     }
-    (kinetic.normal(), omegas)
+    (kinetic.to_expr(), omegas)
 }
 
 /// `V` (gravity, springs, potentials) and `Q_j` by virtual work, damping `−∂D/∂q̇_j` included.
-fn potential_and_forces(system: &System, omegas: &[Vector], vars: &Variables) -> (Expr, Vec<Expr>) {
+///
+/// Each load's potential is brought to normal form on its own, so that a work limit is hit
+/// (and reported) at the load that outgrows it.
+fn potential_and_forces(
+    system: &System,
+    omegas: &[Vector],
+    vars: &Variables,
+    progress: &Progress,
+) -> (Expr, Vec<Expr>) {
     let n = vars.qd.len();
-    let mut potential = Expr::zero();
+    let mut potential = NormalForm::zero();
     let mut dissipation = Expr::zero();
     let mut forces = vec![Expr::zero(); n];
-    for load in system.loads() {
+    let gravity_load = system
+        .loads()
+        .iter()
+        .position(|l| matches!(l, Load::Gravity(_)));
+    if let Some(index) = gravity_load {
+        working_on(progress, Some(Part::Load(index)));
+        let g = system.gravity();
+        let weight = system
+            .particles()
+            .iter()
+            .map(|p| p.mass * dot(&g, &p.position))
+            .chain(system.bodies().iter().map(|b| b.mass * dot(&g, &b.centre)))
+            .sum::<Expr>();
+        potential = potential.sub(&weight.normal_form());
+    }
+    for (index, load) in system.loads().iter().enumerate() {
+        working_on(progress, Some(Part::Load(index)));
         match load {
-            Load::Gravity(g) => {
-                for p in system.particles() {
-                    potential -= p.mass * dot(g, &p.position);
-                }
-                for b in system.bodies() {
-                    potential -= b.mass * dot(g, &b.centre);
-                }
-            }
-            Load::Potential(v) => potential += *v,
+            Load::Gravity(_) => {}
+            Load::Potential(v) => potential = potential.add(&v.normal_form()),
             Load::Dissipation(d) => dissipation += *d,
             Load::Force { force, point } => {
                 for (f, s) in forces.iter_mut().zip(&vars.q_sym) {
@@ -469,10 +553,11 @@ fn potential_and_forces(system: &System, omegas: &[Vector], vars: &Variables) ->
             }
         }
     }
+    working_on(progress, None);
     for (f, s) in forces.iter_mut().zip(&vars.qd_sym) {
         *f = (*f - partial(dissipation, *s)).normal();
     }
-    (potential.normal(), forces)
+    (potential.to_expr(), forces)
 }
 
 /// Lagrange's equations row by row, with the working forms the first integrals need.

@@ -42,7 +42,7 @@ mod unilateral;
 pub use constraint_rank::{constraint_conflict, ConstraintConflict};
 pub use equations::{
     angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,
-    FirstIntegral, MechanicsError,
+    FirstIntegral, MechanicsError, Part,
 };
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{

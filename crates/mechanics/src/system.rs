@@ -268,6 +268,23 @@ impl System {
         &self.loads
     }
 
+    /// The acceleration of gravity: the sum of every [`Load::Gravity`] (zero without one).
+    /// Every method reads gravity from here, so two `gravity` loads act as their sum in all of
+    /// them (Newton–Euler's moment equation once took only the first, and its reaction then
+    /// disagreed with Lagrange I's).
+    #[must_use]
+    pub fn gravity(&self) -> Vector {
+        let mut g = [Expr::zero(), Expr::zero(), Expr::zero()];
+        for load in &self.loads {
+            if let Load::Gravity(a) = load {
+                for k in 0..3 {
+                    g[k] += a[k];
+                }
+            }
+        }
+        g
+    }
+
     /// The constraints.
     #[must_use]
     pub fn constraints(&self) -> &[Constraint] {

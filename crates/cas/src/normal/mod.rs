@@ -69,12 +69,17 @@ pub(crate) fn cached_rf(e: Expr) -> Option<Arc<Rf>> {
 /// The normal form of `e` as an [`Rf`]; past a work limit, `e` itself as an opaque atom
 /// (equal to its input, not canonical: see [`try_to_rf`]).
 pub(crate) fn to_rf(e: Expr) -> Rf {
-    try_to_rf(e).unwrap_or_else(|_| Rf::atom(plain_atom(e)))
+    try_to_rf(e).unwrap_or_else(|_| match e.node() {
+        // Inside a scope past its limit every conversion stops at once, numbers too; a number
+        // is never an atom.
+        Node::Number(n) => Rf::constant(n.clone()),
+        _ => Rf::atom(plain_atom(e)),
+    })
 }
 
 /// The normal form of `e` as an [`Rf`], or the work limit it ran into.
 pub(crate) fn try_to_rf(e: Expr) -> Result<Rf, WorkLimitError> {
-    limits::guarded(|| Normalizer::default().rf(e))
+    limits::limited(|| Normalizer::default().rf(e))
 }
 
 /// The canonical expression of a normal form, remembered as its own normal form.

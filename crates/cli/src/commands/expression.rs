@@ -25,7 +25,10 @@ fn parse(text: &str, coords: &[String]) -> Result<Expr, Failure> {
 
 /// `lagrange simplify EXPR`.
 pub fn simplify(text: &str, format: Format, coords: &[String]) -> Result<Exit, Failure> {
-    print(parse(text, coords)?.normal(), format)
+    let normal = parse(text, coords)?
+        .try_normal()
+        .map_err(|e| Failure::work_limit(&e))?;
+    print(normal, format)
 }
 
 /// `lagrange diff EXPR VAR`.

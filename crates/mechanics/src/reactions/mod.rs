@@ -64,6 +64,9 @@ pub enum ReactionError {
         /// The other constraint.
         other: String,
     },
+    /// The symbolic work went past a limit of the symbolic core ([`cas::WorkLimits`]).
+    #[error("deriving the reactions: {0}")]
+    WorkLimit(cas::WorkLimitError),
     /// A constraint named in a reaction is unknown.
     #[error("no constraint `{0}`")]
     UnknownConstraint(String),
@@ -90,11 +93,37 @@ pub fn reactions(
     reactions_of(system, &equations, requests)
 }
 
+/// `f` within the work limits of the symbolic core: past one, the error `f` made of it (a
+/// derivation's, which names the part) or [`ReactionError::WorkLimit`].
+fn limited<T>(f: impl FnOnce() -> Result<T, ReactionError>) -> Result<T, ReactionError> {
+    match cas::run_limited(f) {
+        (result, None) => result,
+        (
+            Err(
+                e @ ReactionError::Mechanics {
+                    source: MechanicsError::WorkLimit { .. },
+                    ..
+                },
+            ),
+            Some(_),
+        ) => Err(e),
+        (_, Some(error)) => Err(ReactionError::WorkLimit(error)),
+    }
+}
+
 /// [`reactions`] when the equations of `system` are already derived.
 ///
 /// # Errors
 /// As [`reactions`].
 pub fn reactions_of(
+    system: &System,
+    equations: &Equations,
+    requests: &[ReactionRequest],
+) -> Result<Vec<Reaction>, ReactionError> {
+    limited(|| reactions_within(system, equations, requests))
+}
+
+fn reactions_within(
     system: &System,
     equations: &Equations,
     requests: &[ReactionRequest],

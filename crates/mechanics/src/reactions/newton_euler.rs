@@ -56,13 +56,11 @@ pub(super) fn newton_euler(
     let mut applied: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
     let mut potential = Expr::zero();
     let mut dissipation = Expr::zero();
+    for (k, x) in release.system.gravity().iter().enumerate() {
+        weight[k] += mass * *x;
+    }
     for load in release.system.loads() {
         match load {
-            Load::Gravity(g) => {
-                for (k, x) in g.iter().enumerate() {
-                    weight[k] += mass * *x;
-                }
-            }
             Load::Force { force, point } if moves(point) => {
                 for (k, x) in force.iter().enumerate() {
                     applied[k] += *x;
@@ -113,15 +111,7 @@ pub(super) fn moment_equation(
     let mut inertial: Vector = [Expr::zero(), Expr::zero(), Expr::zero()];
     let mut gravity_moment: Vector = inertial;
     let mut spin: Vector = inertial;
-    let gravity: Vector = release
-        .system
-        .loads()
-        .iter()
-        .find_map(|l| match l {
-            Load::Gravity(g) => Some(*g),
-            _ => None,
-        })
-        .unwrap_or([Expr::zero(), Expr::zero(), Expr::zero()]);
+    let gravity: Vector = release.system.gravity();
     let mut add = |m: Expr, r: &Vector| {
         let arm = minus(r, &pivot);
         let a: Vector = r.map(|x| x.dt().dt());
