@@ -481,49 +481,86 @@ impl<'s> Driver<'s> {
         observer: &mut dyn FnMut(f64, &[f64]),
     ) -> Option<StopReason> {
         self.stats.steps += 1;
-        // Events: every sign change in this step, located by bisection on the interpolant;
-        // the first of a stopping event ends the run there.
+        let stop_event = self.events_in_step(t1, y1, interpolate);
+        self.report_crossings(stop_event, interpolate);
+        if let Some(stop) = self.outputs_in_step(t1, y1, stop_event, interpolate, observer) {
+            return Some(stop);
+        }
+        self.advance(t1, y1, stop_event, interpolate, observer)
+    }
+
+    /// Every sign change of an event function in the step to `t1`, located by bisection on
+    /// the interpolant: the recording ones go to `self.recorded`; the first stopping one is
+    /// returned (its index and time).
+    fn events_in_step(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        interpolate: &dyn Fn(f64, &mut [f64]),
+    ) -> Option<(usize, f64)> {
         let mut stop_event: Option<(usize, f64)> = None;
         self.recorded.clear();
-        if !self.events_before.is_empty() {
-            self.system.events(t1, y1, &mut self.events_after);
-            for k in 0..self.events_before.len() {
-                let (g0, g1) = (self.events_before[k], self.events_after[k]);
-                if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
-                    let t = self.locate(k, g0, t1, interpolate);
-                    if self.system.event_stops(k) {
-                        let earlier =
-                            stop_event.is_none_or(|(_, s)| (t - s) * self.direction < 0.0);
-                        if earlier {
-                            stop_event = Some((k, t));
-                        }
-                    } else {
-                        self.recorded.push((k, t, g0 < 0.0));
+        if self.events_before.is_empty() {
+            return None;
+        }
+        self.system.events(t1, y1, &mut self.events_after);
+        for k in 0..self.events_before.len() {
+            let (g0, g1) = (self.events_before[k], self.events_after[k]);
+            if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
+                let t = self.locate(k, g0, t1, interpolate);
+                if self.system.event_stops(k) {
+                    let earlier = stop_event.is_none_or(|(_, s)| (t - s) * self.direction < 0.0);
+                    if earlier {
+                        stop_event = Some((k, t));
                     }
+                } else {
+                    self.recorded.push((k, t, g0 < 0.0));
                 }
             }
-            std::mem::swap(&mut self.events_before, &mut self.events_after);
         }
-        if !self.recorded.is_empty() {
-            let direction = self.direction;
-            self.recorded
-                .sort_by(|a, b| (a.1 * direction).total_cmp(&(b.1 * direction)));
-            for &(index, t, rising) in &self.recorded {
-                // A crossing at the stop itself is kept; one past it did not happen.
-                if stop_event.is_some_and(|(_, s)| (t - s) * direction > 0.0) {
-                    break;
-                }
-                interpolate(t, &mut self.scratch);
-                (self.on_crossing)(Crossing {
-                    index,
-                    t,
-                    rising,
-                    y: &self.scratch,
-                });
+        std::mem::swap(&mut self.events_before, &mut self.events_after);
+        stop_event
+    }
+
+    /// Hands the recorded crossings of the step to the callback in time order, none after
+    /// the stop.
+    fn report_crossings(
+        &mut self,
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+    ) {
+        if self.recorded.is_empty() {
+            return;
+        }
+        let direction = self.direction;
+        self.recorded
+            .sort_by(|a, b| (a.1 * direction).total_cmp(&(b.1 * direction)));
+        for &(index, t, rising) in &self.recorded {
+            // A crossing at the stop itself is kept; one past it did not happen.
+            if stop_event.is_some_and(|(_, s)| (t - s) * direction > 0.0) {
+                break;
             }
+            interpolate(t, &mut self.scratch);
+            (self.on_crossing)(Crossing {
+                index,
+                t,
+                rising,
+                y: &self.scratch,
+            });
         }
+    }
+
+    /// The output rows due inside the step (up to the stop event, before the end time):
+    /// every output step on the interpolant, or the step's end.
+    fn outputs_in_step(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+        observer: &mut dyn FnMut(f64, &[f64]),
+    ) -> Option<StopReason> {
         let horizon = stop_event.map_or(t1, |(_, t)| t);
-        // Outputs inside the step.
         match self.options.output_step {
             Some(step) if step.is_finite() && step > 0.0 => {
                 while let Some(to) = self.next_output {
@@ -553,6 +590,19 @@ impl<'s> Driver<'s> {
                 }
             }
         }
+        None
+    }
+
+    /// Moves to the step's end (or to the stop event, with its row), with the final row at
+    /// the end time; the step limit.
+    fn advance(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+        observer: &mut dyn FnMut(f64, &[f64]),
+    ) -> Option<StopReason> {
         if let Some((index, t)) = stop_event {
             if let Some(stop) = self.no_room(t) {
                 return Some(stop);
