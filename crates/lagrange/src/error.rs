@@ -158,7 +158,9 @@ impl Error {
                 | S::InitialState { .. }
                 | S::StopCondition { .. }
                 | S::RecordCondition { .. }
-                | S::GaussWithConstraints { .. },
+                | S::GaussWithConstraints { .. }
+                | S::EmptySpan { .. }
+                | S::BeyondLimit { .. },
             ) => ErrorKind::Input,
             Error::Reactions(mechanics::ReactionError::UnknownConstraint(_)) => ErrorKind::Input,
             Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {

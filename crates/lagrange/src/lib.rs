@@ -75,8 +75,8 @@ pub use equilibria::{Equilibria, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors};
 pub use reactions::Reactions;
 pub use simulate::{
-    direction, failure_time, grid, plan, run_kept, run_to_csv, samples, Crossing, Ending, Run,
-    SimulationOptions, Streamed, SweepRun, Tally,
+    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,
+    Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution};
 

@@ -16,7 +16,7 @@
 //! [`super::STEP_COLLAPSE_FRACTION`] of the span stops the run as a collapse, as for the
 //! adaptive methods.
 
-use super::{hermite, Driver, Failure, StopReason};
+use super::{hermite, Driver, Failure, Observer, StopReason};
 
 const SQRT15: f64 = 3.872_983_346_207_417;
 const C: [f64; 3] = [0.5 - SQRT15 / 10.0, 0.5, 0.5 + SQRT15 / 10.0];
@@ -179,6 +179,10 @@ fn choose_step(
     span: f64,
 ) -> Result<(f64, f64), Failure> {
     let mut h = first_guess(&driver.y, f0, span);
+    // The motion's own time scale already below the step floor: the span is far too long.
+    if let Some(failure) = driver.too_small(driver.t, h) {
+        return Err(failure);
+    }
     let mut last = (h, f64::INFINITY);
     for _ in 0..PILOT_ROUNDS {
         let (norm, largest) = match pilot(driver, stepper, driver.direction * h, span) {
@@ -205,17 +209,14 @@ fn choose_step(
     Ok(last)
 }
 
-pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
     match steps(driver, observer) {
         Ok(stop) => stop,
         Err(failure) => StopReason::Failed(failure),
     }
 }
 
-fn steps(
-    driver: &mut Driver<'_>,
-    observer: &mut dyn FnMut(f64, &[f64]),
-) -> Result<StopReason, Failure> {
+fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
     let span = (driver.t_end - driver.t).abs();
     if span == 0.0 {

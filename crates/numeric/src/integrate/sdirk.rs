@@ -5,13 +5,13 @@
 //! error estimate compares with the embedded first-order solution `y + h K₁`; a Newton solve
 //! that does not converge rejects the step and retries with a quarter of it.
 
-use super::{hermite, Driver, Failure, StopReason};
+use super::{hermite, Driver, Failure, Observer, StopReason};
 use crate::linalg::solve_in_place;
 
 const GAMMA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
 const NEWTON_ITERATIONS: usize = 10;
 
-pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
     match steps(driver, observer) {
         Ok(stop) => stop,
         Err(failure) => StopReason::Failed(failure),
@@ -68,10 +68,7 @@ impl Step {
     }
 }
 
-fn steps(
-    driver: &mut Driver<'_>,
-    observer: &mut dyn FnMut(f64, &[f64]),
-) -> Result<StopReason, Failure> {
+fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
     let mut work = Work::new(n);
     let mut step = Step::new(n);
@@ -187,7 +184,7 @@ fn finish(
     step: &mut Step,
     t: f64,
     t1: f64,
-    observer: &mut dyn FnMut(f64, &[f64]),
+    observer: &mut Observer<'_>,
 ) -> Result<Option<StopReason>, Failure> {
     let y0 = driver.y.clone();
     // Stiffly accurate: K₂ = F(t + h, y₁), the derivative at the new point.
