@@ -249,6 +249,23 @@ fn an_output_step_that_asks_for_more_rows_than_the_limit_is_refused_at_its_line(
             other => panic!("{other:?}"),
         }
     }
+    // Known failure 7: `step 0.0000001` over the model's 30 s made `solve` keep 3·10⁸ rows
+    // in memory until it aborted past 4 GiB. Its section now says why it did not run, and
+    // where.
+    let text = mutant(
+        "damped-oscillator.lag",
+        "simulate from 0 to 30 step 0.01",
+        "simulate from 0 to 30 step 0.0000001",
+    );
+    let (line, column) = line_col(&text, "0.0000001");
+    let solution = Analysis::from_text(&text).unwrap().solution(None).unwrap();
+    let json = solution.document.to_json().to_string();
+    assert!(
+        json.contains(&format!(
+            "line {line}, column {column}: in the `simulate` statement"
+        )) && json.contains("300000001 rows, more than the row limit of 1000000"),
+        "{json}"
+    );
     // Within the limit: 10⁶ rows exactly (0, 0.01, …, 9999.99) is allowed.
     let within = SimulationOptions {
         t_end: Some(9999.99),

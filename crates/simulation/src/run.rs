@@ -254,14 +254,14 @@ pub enum SimulationError {
         reason: String,
     },
     /// The end time equals the start time.
-    #[error("the run would start and end at t = {t}: the time span is empty; give an end time other than the start time")]
+    #[error("the run would start and end at t = {}: the time span is empty; give an end time other than the start time", number_text(*t))]
     EmptySpan {
         /// The start (and end) time.
         t: f64,
     },
     /// The settings alone ask for more rows (or fixed steps) than the limit allows, and no
     /// stop event could end the run sooner.
-    #[error("from t = {t_start:?} to {t_end:?} every {step:?} makes {} {limit}s, more than the {limit} limit of {allowed}; shorten the span, lengthen the step, or raise the limit", count_text(*count))]
+    #[error("from t = {} to {} every {} makes {} {limit}s, more than the {limit} limit of {allowed}; shorten the span, lengthen the step, or raise the limit", number_text(*t_start), number_text(*t_end), number_text(*step), count_text(*count))]
     BeyondLimit {
         /// Which limit.
         limit: Limit,
@@ -312,6 +312,16 @@ pub enum SimulationError {
     /// The initial state could not be made consistent, or the equations fail there.
     #[error("at the initial state: {0}")]
     Initial(RhsError),
+}
+
+/// A time or step as a person reads it: in powers of ten when very large or small (`{}`
+/// would write all 309 digits of 1e308).
+fn number_text(x: f64) -> String {
+    if x != 0.0 && (x.abs() >= 1e15 || x.abs() < 1e-4) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
 }
 
 /// A count of rows or steps as a person reads it: whole below 10¹⁵, else in powers of ten.
