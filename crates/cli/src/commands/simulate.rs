@@ -283,6 +283,7 @@ fn hint(failure: &lagrange::numeric::Failure) -> Option<&'static str> {
     use lagrange::numeric::Failure as F;
     match failure {
         F::Stiff { .. } => Some("stiff: use --method sdirk"),
+        F::NotConverged { .. } => Some("if stiff, use --method sdirk; else give a smaller --step"),
         F::TooManySteps { .. } => Some("raise the limit with --max-steps N"),
         F::TooManyOutputs { .. } => {
             Some("raise the limit with --max-rows N, or write fewer rows with --output-step")

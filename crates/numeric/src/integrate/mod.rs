@@ -206,8 +206,10 @@ pub enum Failure {
         /// The step size.
         h: f64,
     },
-    /// An implicit stage solve did not converge at the fixed step.
-    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:e}; use a smaller step")]
+    /// An implicit stage solve did not converge at the fixed step (or, for gauss's chosen
+    /// step, only at a step so small that the span would take more than
+    /// [`STIFF_PROJECTED_STEPS`] steps).
+    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:.3e}: gauss solves them by fixed-point iteration, which needs a step below the fastest time scale of the system; if the problem is stiff use the implicit method sdirk, else a smaller step")]
     NotConverged {
         /// When.
         t: f64,

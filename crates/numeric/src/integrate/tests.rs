@@ -367,6 +367,25 @@ fn a_stiff_problem_stops_the_explicit_method_and_not_the_implicit_one() {
         }
         other => panic!("{other:?}"),
     }
+    // Gauss's fixed-point iteration diverges at any step above ~1/λ: it stops at once,
+    // saying so and naming sdirk (it used to diverge into "a value is not finite").
+    let (outcome, rows) = count_rows(
+        &mut ProtheroRobinson { lambda: 1e6 },
+        Method::Gauss,
+        &[1.0],
+        10.0,
+        &options,
+    );
+    match outcome.stop {
+        StopReason::Failed(failure @ Failure::NotConverged { t, h }) => {
+            assert_eq!(t, 0.0);
+            assert!(h * 1e6 > 0.5, "h = {h}");
+            assert!(failure.to_string().contains("sdirk"), "{failure}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(rows, 1);
+    assert!(outcome.stats.evaluations < 100_000, "{:?}", outcome.stats);
     // The same problem is routine for the L-stable method.
     let (outcome, _) = count_rows(
         &mut ProtheroRobinson { lambda: 1e6 },
