@@ -166,7 +166,9 @@ impl Error {
             Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {
                 ErrorKind::Input
             }
-            Error::Inconsistent(_) => ErrorKind::Internal,
+            Error::Inconsistent(_) | Error::Simulation(S::UnsolvedDerivative { .. }) => {
+                ErrorKind::Internal
+            }
             _ => ErrorKind::Mechanics,
         }
     }

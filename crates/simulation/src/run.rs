@@ -279,6 +279,13 @@ pub enum SimulationError {
     /// An expression needs a value that was not given.
     #[error("{0}; give it a value")]
     MissingValue(TapeError),
+    /// The equations handed over still hold an acceleration (or a higher derivative) of a
+    /// coordinate: the derivation did not solve for it. Not the user's mistake: a bug.
+    #[error("the equations of motion still hold `{name}`, a derivative of a coordinate that the derivation should have solved for; this is a bug of lagrange, please report it")]
+    UnsolvedDerivative {
+        /// The symbol (`y_dd`).
+        name: String,
+    },
     /// The initial state does not have two numbers (position, rate) per coordinate.
     #[error("the initial state has {given} numbers; {needed} are needed (the coordinates, then their rates)")]
     InitialState {
@@ -312,6 +319,24 @@ pub enum SimulationError {
     /// The initial state could not be made consistent, or the equations fail there.
     #[error("at the initial state: {0}")]
     Initial(RhsError),
+}
+
+/// A symbol the compiled equations lack: a coordinate's second or higher derivative is the
+/// derivation's failure, anything else a value the user did not give.
+fn missing_value(error: TapeError, coordinates: &[String]) -> SimulationError {
+    let TapeError::UnboundSymbol { name } = &error else {
+        return SimulationError::MissingValue(error);
+    };
+    let derivative = coordinates.iter().any(|q| {
+        name.strip_prefix(q.as_str())
+            .and_then(|rest| rest.strip_prefix('_'))
+            .is_some_and(|ds| ds.len() >= 2 && ds.chars().all(|c| c == 'd'))
+    });
+    if derivative {
+        SimulationError::UnsolvedDerivative { name: name.clone() }
+    } else {
+        SimulationError::MissingValue(error)
+    }
 }
 
 /// A time or step as a person reads it: in powers of ten when very large or small (`{}`
@@ -443,7 +468,7 @@ impl Simulation {
             stopping_events,
             settings.method == MethodName::Gauss,
         )
-        .map_err(SimulationError::MissingValue)?;
+        .map_err(|e| missing_value(e, &coordinates))?;
 
         let t_start = settings.t_start;
         let given = setup.initial;
@@ -822,4 +847,32 @@ fn column_of(text: &str, name: &str) -> Option<usize> {
         from = end;
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unbound(name: &str) -> TapeError {
+        TapeError::UnboundSymbol { name: name.into() }
+    }
+
+    #[test]
+    fn a_coordinates_acceleration_left_in_the_equations_is_a_bug_not_a_missing_value() {
+        let coordinates = ["x".to_owned(), "y".to_owned()];
+        for name in ["y_dd", "x_ddd"] {
+            assert_eq!(
+                missing_value(unbound(name), &coordinates),
+                SimulationError::UnsolvedDerivative { name: name.into() }
+            );
+        }
+        // A parameter, a name that only starts like a coordinate, or a first rate (a state
+        // variable: never missing, but not an acceleration either) is a missing value.
+        for name in ["k", "yy_dd", "y_dx", "y_d"] {
+            assert_eq!(
+                missing_value(unbound(name), &coordinates),
+                SimulationError::MissingValue(unbound(name))
+            );
+        }
+    }
 }
