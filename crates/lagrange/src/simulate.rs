@@ -252,7 +252,7 @@ impl Tally {
     }
 
     /// The summary of the run that produced these (docs/json.md, "simulate --summary"),
-    /// which ended as `ending` ([`Streamed::summary`] passes its own).
+    /// which ended as `ending` ([`Streamed::summary_json`] passes its own).
     #[must_use]
     pub fn summary(
         &self,
@@ -558,20 +558,6 @@ pub struct Streamed {
     pub bytes: u64,
     /// Wall time of the run, in seconds.
     pub wall_time: f64,
-}
-
-impl Streamed {
-    /// The JSON summary of this run of `simulation` (docs/json.md, "simulate --summary").
-    #[must_use]
-    pub fn summary(&self, model: &str, simulation: &Simulation) -> Value {
-        self.tally.summary(
-            model,
-            simulation,
-            &self.outcome,
-            &self.ending,
-            self.wall_time,
-        )
-    }
 }
 
 /// Runs a prepared simulation and writes its rows to `out` as CSV (header first) as they

@@ -423,7 +423,7 @@ fn the_byte_limit_stops_the_csv_within_it_with_the_rows_so_far() {
     assert_eq!(last[0], run.outcome.t);
     assert_eq!(run.kept.len() as u64, run.tally.rows);
     assert_eq!(text.lines().count() as u64, run.tally.rows + 1);
-    let summary = run.summary("pendulum", &simulation);
+    let summary = run.summary_json("pendulum", &simulation);
     assert_eq!(summary["outcome"]["failure"], "too_many_bytes", "{summary}");
     assert_eq!(summary["outcome"]["numbers"]["bytes"], 20_000);
 }
