@@ -212,7 +212,7 @@ fn a_runaway_pendulum_stops_with_exit_3_keeping_its_rows_and_saying_why() {
     ]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(3), "{err}");
-    assert!(err.contains("step size collapsed"), "{err}");
+    assert!(err.contains("step size fell"), "{err}");
     let text = std::fs::read_to_string(&csv).expect("the rows so far");
     let rows = text.lines().count() - 1;
     assert!((1..1000).contains(&rows), "{rows} rows");
@@ -240,4 +240,89 @@ fn a_runaway_pendulum_stops_with_exit_3_keeping_its_rows_and_saying_why() {
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     assert_eq!(stdout(&o).lines().count(), 1 + 7);
     assert!(stderr(&o).contains("--max-rows"), "{}", stderr(&o));
+}
+
+/// An example model with `from` replaced by `to`, written to a temporary file.
+fn mutant(example: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(common::root().join("examples").join(example)).unwrap();
+    assert!(text.contains(from));
+    let path = temp(&format!("mutant-{}", example.replace('/', "-")));
+    std::fs::write(&path, text.replacen(from, to, 1)).unwrap();
+    path
+}
+
+#[test]
+fn limits_refusals_and_runaways_from_the_fuzzer_have_their_exit_codes() {
+    // Rows beyond the row limit from the model's settings: refused at the `step`, exit 1.
+    let model = mutant(
+        "damped-oscillator.lag",
+        "simulate from 0 to 30 step 0.01",
+        "simulate from 0 to 1e308 step 0.01",
+    );
+    let o = lagrange(&["simulate", model.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(".lag:17:31: ") && err.contains("row limit"),
+        "{err}"
+    );
+    // The same from the flags: no line, the flag named.
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--t-end",
+        "1e9",
+        "--output-step",
+        "1",
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("(--max-rows N)"), "{err}");
+    // The start time from the model equal to --t-end: exit 1 at the model's `from`.
+    let model = mutant(
+        "canonical/pendulum.lag",
+        "simulate from 0 to 10",
+        "simulate from 0.5 to 10",
+    );
+    let o = lagrange(&["simulate", model.to_str().unwrap(), "--t-end", "0.5"]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(".lag:15:15: ") && err.contains("span is empty"),
+        "{err}"
+    );
+    // The byte limit: exit 3, the CSV within it, the flag named.
+    let o = lagrange(&[
+        "simulate",
+        "examples/simple-pendulum.lag",
+        "--t-end",
+        "1000",
+        "--max-bytes",
+        "5000",
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(3), "{err}");
+    assert!(
+        o.stdout.len() <= 5000 && o.stdout.len() > 4000,
+        "{}",
+        o.stdout.len()
+    );
+    assert!(err.contains("--max-bytes N"), "{err}");
+    // An end time of 1e29: `solve` finishes (exit 0) and says why its run stopped;
+    // `simulate` stops at once, exit 3.
+    let model = mutant(
+        "simple-pendulum.lag",
+        "simulate from 0 to 10",
+        "simulate from 0 to 1e29",
+    );
+    let o = lagrange(&["solve", model.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains("The run stopped at t = 0: the step size fell"),
+        "{}",
+        stdout(&o)
+    );
+    let o = lagrange(&["simulate", model.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert_eq!(stdout(&o).lines().count(), 2);
 }

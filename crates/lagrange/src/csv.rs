@@ -1,7 +1,7 @@
 //! The tables a simulation writes, as CSV text: rows of numbers (each the shortest text that
 //! reads back to the same `f64`), the recorded crossings, and one row per run of a sweep.
 
-use crate::simulate::{direction, Crossing, Ending, SweepRun};
+use crate::simulate::{direction, Crossing, SweepRun};
 use crate::Error;
 
 /// One row: numbers separated by commas, with a line break.
@@ -82,7 +82,7 @@ pub fn sweep(
         fields.extend(values.iter().map(|v| format!("{v:?}")));
         match result {
             Ok(r) => {
-                failed += usize::from(matches!(r.ending, Ending::Failed(_)));
+                failed += usize::from(r.ending.stopped_short());
                 fields.extend(r.last.iter().map(|v| format!("{v:?}")));
                 let missing = columns.len().saturating_sub(r.last.len());
                 fields.extend(std::iter::repeat_n(String::new(), missing));

@@ -183,13 +183,17 @@ impl Error {
                 | S::InitialState { .. }
                 | S::StopCondition { .. }
                 | S::RecordCondition { .. }
-                | S::GaussWithConstraints { .. },
+                | S::GaussWithConstraints { .. }
+                | S::EmptySpan { .. }
+                | S::BeyondLimit { .. },
             ) => ErrorKind::Input,
             Error::Reactions(mechanics::ReactionError::UnknownConstraint(_)) => ErrorKind::Input,
             Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {
                 ErrorKind::Input
             }
-            Error::Inconsistent(_) => ErrorKind::Internal,
+            Error::Inconsistent(_) | Error::Simulation(S::UnsolvedDerivative { .. }) => {
+                ErrorKind::Internal
+            }
             _ => ErrorKind::Mechanics,
         }
     }

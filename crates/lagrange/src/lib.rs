@@ -77,8 +77,8 @@ pub use error::{Error, ErrorKind, ModelErrors};
 pub use reactions::Reactions;
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
-    direction, failure_time, grid, plan, run_kept, run_to_csv, samples, Crossing, Ending, Run,
-    SimulationOptions, Streamed, SweepRun, Tally,
+    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,
+    Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution};
 

@@ -105,8 +105,13 @@ impl Streamed {
     /// The run as JSON (docs/json.md): settings, outcome, work, errors, crossings.
     #[must_use]
     pub fn summary_json(&self, model: &str, simulation: &Simulation) -> serde_json::Value {
-        self.tally
-            .summary(model, simulation, &self.outcome, self.wall_time)
+        self.tally.summary(
+            model,
+            simulation,
+            &self.outcome,
+            &self.ending,
+            self.wall_time,
+        )
     }
 }
 

@@ -3,10 +3,12 @@
 //! how each run ended (typed), its summary, and sweeps over values on all cores — one
 //! derivation for all of them.
 
+use std::ops::ControlFlow;
+
 use numeric::{Failure, Outcome, Stats, StopReason};
 use rayon::prelude::*;
 use serde_json::{json, Value};
-use simulation::{MethodName, Settings, Setup, Simulation, StopEvent};
+use simulation::{Limit, MethodName, Settings, Setup, Simulation, SimulationError, StopEvent};
 
 use crate::assign::{AssignmentError, Range};
 use crate::{Analysis, Error};
@@ -36,11 +38,15 @@ pub struct SimulationOptions {
     /// Run on where a one-sided constraint would be lost (the equations then describe a
     /// motion that cannot happen).
     pub through_contact_loss: bool,
-    /// The most integration steps (default: [`Settings::new`]'s 10⁷).
+    /// The most integration steps (default: [`Settings::new`]'s 10⁶).
     pub max_steps: Option<u64>,
-    /// The most output rows (default: [`Settings::new`]'s 10⁶).
+    /// The most output rows (default: [`Settings::new`]'s 10⁶). A run that nothing can
+    /// stop early and whose output step asks for more is refused before it starts.
     pub max_rows: Option<u64>,
 }
+
+/// The default limit of the CSV a run writes ([`run_to_csv`]): 256 MiB.
+pub const DEFAULT_MAX_BYTES: u64 = 256 << 20;
 
 /// How a run ended.
 #[derive(Debug, Clone, PartialEq)]
@@ -60,6 +66,13 @@ pub enum Ending {
     },
     /// The integration failed; the rows before are valid.
     Failed(Failure),
+    /// The output reached its size limit ([`run_to_csv`]); the rows written are valid.
+    OutputLimit {
+        /// The limit, in bytes.
+        bytes: u64,
+    },
+    /// The caller's row callback ended the run ([`Simulation::run_until`]).
+    Halted,
 }
 
 impl Ending {
@@ -77,8 +90,19 @@ impl Ending {
                 },
             },
             StopReason::Failed(failure) => Ending::Failed(failure),
+            StopReason::Halted { .. } => Ending::Halted,
             _ => Ending::Finished,
         }
+    }
+
+    /// Whether the run stopped short of what was asked (a failure, a limit): the CLI's
+    /// exit 3. A stop condition or a lost contact is what was asked.
+    #[must_use]
+    pub fn stopped_short(&self) -> bool {
+        matches!(
+            self,
+            Ending::Failed(_) | Ending::OutputLimit { .. } | Ending::Halted
+        )
     }
 
     /// What happened, as a sentence for people (`None` when the run finished); `t` is where
@@ -92,6 +116,10 @@ impl Ending {
                 "stopped at t = {t}: the one-sided constraint `{constraint}` is lost there (its reaction changes sign)"
             )),
             Ending::Failed(failure) => Some(format!("the simulation stopped {failure}")),
+            Ending::OutputLimit { bytes } => Some(format!(
+                "the simulation stopped at t = {t}: the output reached its limit of {bytes} bytes; raise it, or write fewer rows (a row every output step)"
+            )),
+            Ending::Halted => Some(format!("the run was ended at t = {t} by its caller")),
         }
     }
 
@@ -103,11 +131,14 @@ impl Ending {
             Ending::Condition { .. } => "event".into(),
             Ending::ContactLost { constraint } => format!("contact lost: {constraint}"),
             Ending::Failed(failure) => format!("failed {failure}"),
+            Ending::OutputLimit { bytes } => format!("failed: output limit of {bytes} bytes"),
+            Ending::Halted => "halted".into(),
         }
     }
 
     /// As JSON: `kind` is `finished`, `event` (with `event`), `contact_lost` (with
-    /// `constraint`) or `failed` (with `reason`); `t` is where it ended.
+    /// `constraint`), `failed` (with `reason`, `failure` and `numbers`; the output limit is
+    /// the failure `too_many_bytes`) or `halted`; `t` is where it ended.
     #[must_use]
     pub fn to_json(&self, t: f64) -> Value {
         match self {
@@ -128,6 +159,11 @@ impl Ending {
                 json!({ "kind": "failed", "t": failure_time(failure).unwrap_or(t), "reason": reason,
                         "failure": failure.kind(), "numbers": numbers })
             }
+            Ending::OutputLimit { bytes } => json!({
+                "kind": "failed", "t": t, "reason": format!("the output reached its limit of {bytes} bytes"),
+                "failure": "too_many_bytes", "numbers": { "bytes": bytes }
+            }),
+            Ending::Halted => json!({ "kind": "halted", "t": t }),
         }
     }
 }
@@ -215,13 +251,15 @@ impl Tally {
         self.last.iter().rev().nth(1).copied().unwrap_or(f64::NAN)
     }
 
-    /// The summary of the run that produced these (docs/json.md, "simulate --summary").
+    /// The summary of the run that produced these (docs/json.md, "simulate --summary"),
+    /// which ended as `ending` ([`Streamed::summary_json`] passes its own).
     #[must_use]
     pub fn summary(
         &self,
         model: &str,
         simulation: &Simulation,
         outcome: &Outcome,
+        ending: &Ending,
         wall_time: f64,
     ) -> Value {
         let integrator = simulation.integrator_options();
@@ -256,7 +294,7 @@ impl Tally {
             "t_start": t_start,
             "t_end": t_end,
             "t_reached": outcome.t,
-            "outcome": Ending::of(simulation, outcome).to_json(outcome.t),
+            "outcome": ending.to_json(outcome.t),
             "steps": outcome.stats.steps,
             "rejected_steps": outcome.stats.rejected,
             "rhs_evaluations": outcome.stats.evaluations,
@@ -296,11 +334,14 @@ impl Analysis {
         let method = match options.method {
             Some(m) => m,
             None => match statement.and_then(|s| s.method.as_ref()) {
-                Some(name) => {
-                    MethodName::parse(&name.name).ok_or_else(|| Error::UnknownMethod {
-                        name: name.name.clone(),
-                    })?
-                }
+                Some(name) => MethodName::parse(&name.name).ok_or_else(|| {
+                    self.in_statement(
+                        Error::UnknownMethod {
+                            name: name.name.clone(),
+                        },
+                        name.span,
+                    )
+                })?,
                 None => MethodName::Dopri5,
             },
         };
@@ -335,49 +376,56 @@ impl Analysis {
     }
 
     /// A bad setting that came from the model's `simulate` statement, with its line and
-    /// column; one the caller gave stays as it is.
-    fn locate_setting(
-        &self,
-        error: simulation::SimulationError,
-        options: &SimulationOptions,
-    ) -> Error {
-        let simulation::SimulationError::InvalidSetting { setting, .. } = &error else {
-            return error.into();
+    /// column; one the caller gave stays as it is. A setting that is wrong with another
+    /// (an end time equal to the start, a span too long for its output step) points at the
+    /// first of them that the statement gave.
+    fn locate_setting(&self, error: SimulationError, options: &SimulationOptions) -> Error {
+        type Pick = fn(&model::Simulation) -> Option<&model::Expr>;
+        let from: (bool, Pick) = (options.t_start.is_some(), |s| s.from.as_ref());
+        let to: (bool, Pick) = (options.t_end.is_some(), |s| s.to.as_ref());
+        let step: (bool, Pick) = (options.output_step.is_some(), |s| s.step.as_ref());
+        let parts: Vec<(bool, Pick)> = match &error {
+            SimulationError::InvalidSetting { setting, .. } => match *setting {
+                "start time" => vec![from],
+                "end time" => vec![to],
+                "rtol" => vec![(options.rtol.is_some(), |s| s.rtol.as_ref())],
+                "atol" => vec![(options.atol.is_some(), |s| s.atol.as_ref())],
+                "output step" => vec![step],
+                _ => Vec::new(),
+            },
+            SimulationError::EmptySpan { .. } => vec![to, from],
+            // The span's length and the output step decide: a start from the statement with
+            // both of those from the caller is not the model's mistake.
+            SimulationError::BeyondLimit {
+                limit: Limit::Rows, ..
+            } => vec![step, to],
+            SimulationError::BeyondLimit {
+                limit: Limit::Steps,
+                ..
+            } => vec![to],
+            _ => Vec::new(),
         };
-        let (given, from_model) = match *setting {
-            "start time" => (
-                options.t_start.is_some(),
-                statement_part(self, |s| s.from.as_ref()),
-            ),
-            "end time" => (
-                options.t_end.is_some(),
-                statement_part(self, |s| s.to.as_ref()),
-            ),
-            "rtol" => (
-                options.rtol.is_some(),
-                statement_part(self, |s| s.rtol.as_ref()),
-            ),
-            "atol" => (
-                options.atol.is_some(),
-                statement_part(self, |s| s.atol.as_ref()),
-            ),
-            "output step" => (
-                options.output_step.is_some(),
-                statement_part(self, |s| s.step.as_ref()),
-            ),
-            _ => (true, None),
+        let span = parts
+            .into_iter()
+            .filter(|(given, _)| !given)
+            .find_map(|(_, pick)| statement_part(self, pick));
+        match span {
+            Some(span) => self.in_statement(error.into(), span),
+            None => error.into(),
+        }
+    }
+
+    /// `error`, located at `span` of the model's `simulate` statement.
+    fn in_statement(&self, error: Error, span: model::Span) -> Error {
+        let Some(source) = self.source() else {
+            return error;
         };
-        match (given, from_model, self.source()) {
-            (false, Some(span), Some(source)) => {
-                let at = model::line_col(&source.text, span.start);
-                Error::Located {
-                    message: format!("in the `simulate` statement: {error}"),
-                    line: at.line,
-                    column: at.column,
-                    kind: crate::ErrorKind::Input,
-                }
-            }
-            _ => error.into(),
+        let at = model::line_col(&source.text, span.start);
+        Error::Located {
+            message: format!("in the `simulate` statement: {error}"),
+            line: at.line,
+            column: at.column,
+            kind: crate::ErrorKind::Input,
         }
     }
 
@@ -410,12 +458,8 @@ impl Analysis {
             stop_events,
             record_when: options.record_when.clone(),
         };
-        Ok(Simulation::prepare(
-            self.system(),
-            equations,
-            &settings,
-            setup,
-        )?)
+        Simulation::prepare(self.system(), equations, &settings, setup)
+            .map_err(|e| self.locate_setting(e, options))
     }
 
     /// Runs a simulation and keeps every row.
@@ -503,16 +547,23 @@ pub struct SweepRun {
 pub struct Streamed {
     /// How the integration ended, with its work.
     pub outcome: Outcome,
+    /// How the run ended (the output limit included, which the outcome only knows as a
+    /// halt).
+    pub ending: Ending,
     /// Rows, drift, crossings.
     pub tally: Tally,
     /// Every row, when asked to keep them (for a plot).
     pub kept: Vec<Vec<f64>>,
+    /// Bytes written, the header included.
+    pub bytes: u64,
     /// Wall time of the run, in seconds.
     pub wall_time: f64,
 }
 
 /// Runs a prepared simulation and writes its rows to `out` as CSV (header first) as they
 /// come, keeping them too when `keep`; `on_time` hears the time of each row (a progress bar).
+/// The CSV stays within `max_bytes` ([`DEFAULT_MAX_BYTES`]): the run stops after the last
+/// row that leaves room for one as long as the longest so far ([`Ending::OutputLimit`]).
 ///
 /// # Errors
 /// The first write error, after the run.
@@ -520,24 +571,38 @@ pub fn run_to_csv(
     simulation: &mut Simulation,
     out: &mut dyn std::io::Write,
     keep: bool,
+    max_bytes: u64,
     on_time: &mut dyn FnMut(f64),
 ) -> std::io::Result<Streamed> {
-    out.write_all(format!("{}\n", simulation.columns().join(",")).as_bytes())?;
+    let header = format!("{}\n", simulation.columns().join(","));
+    out.write_all(header.as_bytes())?;
     let mut write_error = None;
     let mut kept = Vec::new();
     let mut tally = Tally::default();
     let mut recorded = Tally::default();
+    let mut bytes = header.len() as u64;
+    let mut longest = 0;
+    let mut full = false;
     let started = std::time::Instant::now();
-    let outcome = simulation.run_recording(
+    let outcome = simulation.run_until(
         &mut |row| {
+            let line = crate::csv::row(row);
             if write_error.is_none() {
-                write_error = out.write_all(crate::csv::row(row).as_bytes()).err();
+                write_error = out.write_all(line.as_bytes()).err();
             }
+            bytes += line.len() as u64;
+            longest = longest.max(line.len() as u64);
             if keep {
                 kept.push(row.to_vec());
             }
             tally.row(row);
             on_time(row[0]);
+            full = bytes + longest > max_bytes;
+            if full {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
         },
         &mut |c| recorded.crossing(&c),
     );
@@ -547,27 +612,43 @@ pub fn run_to_csv(
     }
     out.flush()?;
     tally.crossings = recorded.crossings;
+    let ending = match outcome.stop {
+        StopReason::Halted { .. } if full => Ending::OutputLimit { bytes: max_bytes },
+        _ => Ending::of(simulation, &outcome),
+    };
     Ok(Streamed {
         outcome,
+        ending,
         tally,
         kept,
+        bytes,
         wall_time,
     })
 }
 
 /// Runs a prepared simulation and keeps every row and crossing.
 pub fn run_kept(simulation: &mut Simulation) -> Run {
+    run_sampled(simulation, usize::MAX)
+}
+
+/// Runs a prepared simulation and keeps at most about `most` rows, evenly spread over the
+/// run, and the last one: when the rows kept reach `2·most`, every other one is dropped and
+/// from then on only every other row is kept (then every fourth, …). Memory stays bounded
+/// whatever the run's length; a plot of the rows kept looks like one of all of them as long
+/// as `most` is well above the plot's width.
+pub fn run_sampled(simulation: &mut Simulation, most: usize) -> Run {
     let columns = simulation.columns();
     let n = (columns.len() - 3) / 2;
-    let mut rows = Vec::new();
+    let mut rows = Sampled::new(most);
     let mut crossings = Vec::new();
-    let outcome = simulation.run_recording(&mut |row| rows.push(row.to_vec()), &mut |c| {
+    let outcome = simulation.run_recording(&mut |row| rows.push(row), &mut |c| {
         crossings.push(Crossing {
             event: c.event,
             rising: c.rising,
             state: c.row[..=2 * n].to_vec(),
         });
     });
+    let rows = rows.finish();
     Run {
         columns,
         rows,
@@ -577,6 +658,59 @@ pub fn run_kept(simulation: &mut Simulation) -> Run {
         stats: outcome.stats,
         method: simulation.method(),
         span: simulation.span(),
+    }
+}
+
+/// Rows thinned as they come (see [`run_sampled`]).
+struct Sampled {
+    most: usize,
+    rows: Vec<Vec<f64>>,
+    /// Every `stride`-th row is kept.
+    stride: u64,
+    seen: u64,
+    /// The latest row, and whether it is among `rows`.
+    last: Vec<f64>,
+    last_kept: bool,
+}
+
+impl Sampled {
+    fn new(most: usize) -> Sampled {
+        Sampled {
+            most: most.max(1),
+            rows: Vec::new(),
+            stride: 1,
+            seen: 0,
+            last: Vec::new(),
+            last_kept: true,
+        }
+    }
+
+    fn push(&mut self, row: &[f64]) {
+        self.last_kept = self.seen % self.stride == 0;
+        if self.last_kept {
+            self.rows.push(row.to_vec());
+            if self.rows.len() >= self.most.saturating_mul(2) {
+                // Rows i·stride are kept; the even i are the multiples of the new stride.
+                let mut i = 0;
+                self.rows.retain(|_| {
+                    i += 1;
+                    i % 2 == 1
+                });
+                self.stride *= 2;
+                self.last_kept = false;
+            }
+        }
+        self.seen += 1;
+        self.last.clear();
+        self.last.extend_from_slice(row);
+    }
+
+    /// The rows kept, the last one of the run included.
+    fn finish(mut self) -> Vec<Vec<f64>> {
+        if !self.last_kept {
+            self.rows.push(self.last);
+        }
+        self.rows
     }
 }
 

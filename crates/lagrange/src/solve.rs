@@ -8,8 +8,12 @@ use std::path::{Path, PathBuf};
 use report::document::{Document, Notation, Section};
 use report::solution_simulation::{simulation_section, RunEnd, RunReport};
 
-use crate::simulate::{run_kept, Ending, SimulationOptions};
+use crate::simulate::{run_sampled, Ending, SimulationOptions};
 use crate::{Analysis, Error};
+
+/// About how many rows of its simulation a solution keeps for the plot (at most twice as
+/// many, evenly spread, and the last).
+pub const PLOTTED_ROWS: usize = 5_000;
 
 /// Where the solution's figures go.
 #[derive(Debug, Clone)]
@@ -118,9 +122,19 @@ impl Analysis {
     fn simulation_part(&self, figures: Option<&Figures>) -> Section {
         let mut simulation = match self.simulation(&SimulationOptions::default()) {
             Ok(s) => s,
+            Err(Error::Located {
+                message,
+                line,
+                column,
+                ..
+            }) => {
+                return simulation_section(Err(format!("line {line}, column {column}: {message}")))
+            }
             Err(error) => return simulation_section(Err(error.to_string())),
         };
-        let run = run_kept(&mut simulation);
+        // The section shows the last state and a plot: a bounded sample of the rows is
+        // enough, however long the run (its steps and rows are bounded by the limits).
+        let run = run_sampled(&mut simulation, PLOTTED_ROWS);
         let end = match &run.ending {
             Ending::Finished => RunEnd::Finished,
             Ending::ContactLost { constraint } => RunEnd::ContactLost {
@@ -129,6 +143,8 @@ impl Analysis {
             },
             Ending::Condition { .. } => RunEnd::Condition { t: run.t },
             Ending::Failed(failure) => RunEnd::Failed(failure.to_string()),
+            // A sampled run has no output limit and no caller to halt it.
+            other => RunEnd::Failed(format!("at t = {}: {}", run.t, other.word())),
         };
         let figure = figures.map(|f| {
             let file = format!("{}-motion.{}", f.stem, f.extension);

@@ -11,9 +11,10 @@ pub mod roots;
 mod tape;
 
 pub use integrate::{
-    integrate, integrate_with_crossings, Crossing, Failure, IntegratorOptions, Method, OdeSystem,
-    Outcome, RhsError, Stats, StopReason, PILOT_STEPS, STEP_COLLAPSE_FRACTION, STIFF_H_LAMBDA,
-    STIFF_PROJECTED_STEPS, STIFF_STEPS,
+    integrate, integrate_observed, integrate_with_crossings, Crossing, Failure, IntegratorOptions,
+    Method, OdeSystem, Outcome, RhsError, Stats, StopReason, DEFAULT_MAX_OUTPUTS,
+    DEFAULT_MAX_STEPS, PILOT_STEPS, STEP_COLLAPSE_FRACTION, STIFF_H_LAMBDA, STIFF_PROJECTED_STEPS,
+    STIFF_STEPS,
 };
 pub use linalg::{cholesky_solve_in_place, solve_in_place, LinearError};
 pub use tape::{Tape, TapeError};

@@ -2,13 +2,14 @@
 //! command line, the initial state, and the output rows.
 
 use std::fmt;
+use std::ops::ControlFlow;
 
 use cas::ParseContext;
 use mechanics::{Equations, System};
 use std::cell::RefCell;
 
 use numeric::{
-    integrate_with_crossings, Crossing, IntegratorOptions, Method, OdeSystem, Outcome, RhsError,
+    integrate_observed, Crossing, IntegratorOptions, Method, OdeSystem, Outcome, RhsError,
     TapeError,
 };
 
@@ -68,16 +69,17 @@ pub struct Settings {
     pub output_step: Option<f64>,
     /// The integration step: fixed for gauss, initial for dopri5 (`None`: chosen).
     pub step: Option<f64>,
-    /// The most integration steps; more stops the run (default: 10⁷).
+    /// The most integration steps; more stops the run (default:
+    /// [`numeric::DEFAULT_MAX_STEPS`], 10⁶).
     pub max_steps: u64,
     /// The most output rows (the initial row included); the run stops when one more is
-    /// due (default: 10⁶).
+    /// due (default: [`numeric::DEFAULT_MAX_OUTPUTS`], 10⁶).
     pub max_rows: u64,
 }
 
 impl Settings {
     /// dopri5 from 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, a row every accepted step, at
-    /// most 10⁷ steps and 10⁶ rows.
+    /// most 10⁶ steps and 10⁶ rows.
     #[must_use]
     pub fn new(t_end: f64) -> Settings {
         Settings {
@@ -99,13 +101,10 @@ impl Settings {
     /// [`SimulationError::InvalidSetting`] naming the setting.
     pub fn validate(&self) -> Result<(), SimulationError> {
         check_setting("start time", self.t_start, f64::is_finite, "must be finite")?;
-        let t_start = self.t_start;
-        check_setting(
-            "end time",
-            self.t_end,
-            |x| x.is_finite() && x != t_start,
-            "must be finite and differ from the start time",
-        )?;
+        check_setting("end time", self.t_end, f64::is_finite, "must be finite")?;
+        if self.t_end == self.t_start {
+            return Err(SimulationError::EmptySpan { t: self.t_start });
+        }
         check_setting(
             "rtol",
             self.rtol,
@@ -138,6 +137,62 @@ impl Settings {
             });
         }
         Ok(())
+    }
+
+    /// Checks, before any step, that a run that nothing stops early stays within the
+    /// limits: the rows every output step over the span (the initial one included), and the
+    /// steps of gauss's fixed step. A run with stop events may end sooner and is not
+    /// checked; it meets the limits as it goes.
+    ///
+    /// # Errors
+    /// [`SimulationError::BeyondLimit`] with the count the settings ask for.
+    pub fn check_limits(&self) -> Result<(), SimulationError> {
+        let span = (self.t_end - self.t_start).abs();
+        if let Some(step) = self.output_step {
+            let rows = (span / step).floor() + 1.0;
+            if rows > self.max_rows as f64 {
+                return Err(self.beyond(Limit::Rows, rows, step));
+            }
+        }
+        if let (MethodName::Gauss, Some(step)) = (self.method, self.step) {
+            let steps = (span / step).ceil();
+            if steps > self.max_steps as f64 {
+                return Err(self.beyond(Limit::Steps, steps, step));
+            }
+        }
+        Ok(())
+    }
+
+    fn beyond(&self, limit: Limit, count: f64, step: f64) -> SimulationError {
+        SimulationError::BeyondLimit {
+            limit,
+            count,
+            allowed: match limit {
+                Limit::Rows => self.max_rows,
+                Limit::Steps => self.max_steps,
+            },
+            t_start: self.t_start,
+            t_end: self.t_end,
+            step,
+        }
+    }
+}
+
+/// A limit of a run that its settings alone would exceed ([`Settings::check_limits`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Limit {
+    /// Output rows, one every output step.
+    Rows,
+    /// Integration steps of a fixed step (gauss).
+    Steps,
+}
+
+impl fmt::Display for Limit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Limit::Rows => "row",
+            Limit::Steps => "step",
+        })
     }
 }
 
@@ -198,9 +253,39 @@ pub enum SimulationError {
         /// Why.
         reason: String,
     },
+    /// The end time equals the start time.
+    #[error("the run would start and end at t = {}: the time span is empty; give an end time other than the start time", number_text(*t))]
+    EmptySpan {
+        /// The start (and end) time.
+        t: f64,
+    },
+    /// The settings alone ask for more rows (or fixed steps) than the limit allows, and no
+    /// stop event could end the run sooner.
+    #[error("from t = {} to {} every {} makes {} {limit}s, more than the {limit} limit of {allowed}; shorten the span, lengthen the step, or raise the limit", number_text(*t_start), number_text(*t_end), number_text(*step), count_text(*count))]
+    BeyondLimit {
+        /// Which limit.
+        limit: Limit,
+        /// The rows or steps the settings ask for.
+        count: f64,
+        /// The limit.
+        allowed: u64,
+        /// Start time.
+        t_start: f64,
+        /// End time.
+        t_end: f64,
+        /// The output step (rows) or the fixed step (steps).
+        step: f64,
+    },
     /// An expression needs a value that was not given.
     #[error("{0}; give it a value")]
     MissingValue(TapeError),
+    /// The equations handed over still hold an acceleration (or a higher derivative) of a
+    /// coordinate: the derivation did not solve for it. Not the user's mistake: a bug.
+    #[error("the equations of motion still hold `{name}`, a derivative of a coordinate that the derivation should have solved for; this is a bug of lagrange, please report it")]
+    UnsolvedDerivative {
+        /// The symbol (`y_dd`).
+        name: String,
+    },
     /// The initial state does not have two numbers (position, rate) per coordinate.
     #[error("the initial state has {given} numbers; {needed} are needed (the coordinates, then their rates)")]
     InitialState {
@@ -234,6 +319,45 @@ pub enum SimulationError {
     /// The initial state could not be made consistent, or the equations fail there.
     #[error("at the initial state: {0}")]
     Initial(RhsError),
+}
+
+/// A symbol the compiled equations lack: a coordinate's second or higher derivative is the
+/// derivation's failure, anything else a value the user did not give.
+fn missing_value(error: TapeError, coordinates: &[String]) -> SimulationError {
+    let TapeError::UnboundSymbol { name } = &error else {
+        return SimulationError::MissingValue(error);
+    };
+    let derivative = coordinates.iter().any(|q| {
+        name.strip_prefix(q.as_str())
+            .and_then(|rest| rest.strip_prefix('_'))
+            .is_some_and(|ds| ds.len() >= 2 && ds.chars().all(|c| c == 'd'))
+    });
+    if derivative {
+        SimulationError::UnsolvedDerivative { name: name.clone() }
+    } else {
+        SimulationError::MissingValue(error)
+    }
+}
+
+/// A time or step as a person reads it: in powers of ten when very large or small (`{}`
+/// would write all 309 digits of 1e308).
+fn number_text(x: f64) -> String {
+    if x != 0.0 && (x.abs() >= 1e15 || x.abs() < 1e-4) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// A count of rows or steps as a person reads it: whole below 10¹⁵, else in powers of ten.
+fn count_text(count: f64) -> String {
+    if count < 1e15 {
+        format!("{count:.0}")
+    } else if count.is_finite() {
+        format!("{count:.1e}")
+    } else {
+        "more than 10³⁰⁸".to_owned()
+    }
 }
 
 /// How the initial state was moved onto the constraints kept with multipliers.
@@ -293,6 +417,9 @@ impl Simulation {
         setup: Setup,
     ) -> Result<Simulation, SimulationError> {
         settings.validate()?;
+        if setup.stop_events.is_empty() {
+            settings.check_limits()?;
+        }
         let coordinates = equations.coordinates().to_vec();
         let n = coordinates.len();
         if setup.initial.len() != 2 * n {
@@ -341,7 +468,7 @@ impl Simulation {
             stopping_events,
             settings.method == MethodName::Gauss,
         )
-        .map_err(SimulationError::MissingValue)?;
+        .map_err(|e| missing_value(e, &coordinates))?;
 
         let t_start = settings.t_start;
         let given = setup.initial;
@@ -475,6 +602,22 @@ impl Simulation {
         on_row: &mut dyn FnMut(&[f64]),
         on_crossing: &mut dyn FnMut(RecordedCrossing<'_>),
     ) -> Outcome {
+        self.run_until(
+            &mut |row| {
+                on_row(row);
+                ControlFlow::Continue(())
+            },
+            on_crossing,
+        )
+    }
+
+    /// [`Simulation::run_recording`] with a row callback that may end the run: after a row
+    /// for which it returns `Break`, the run stops there ([`numeric::StopReason::Halted`]).
+    pub fn run_until(
+        &mut self,
+        on_row: &mut dyn FnMut(&[f64]) -> ControlFlow<()>,
+        on_crossing: &mut dyn FnMut(RecordedCrossing<'_>),
+    ) -> Outcome {
         let n = self.coordinates.len();
         let method = self.method;
         let (t0, t1, options) = (self.t_start, self.t_end, self.options);
@@ -485,7 +628,7 @@ impl Simulation {
         match method {
             MethodName::Dopri5 | MethodName::Sdirk => {
                 let mut system = SecondOrder::new(&mut self.compiled);
-                integrate_with_crossings(
+                integrate_observed(
                     &mut system,
                     if method == MethodName::Sdirk {
                         Method::Sdirk
@@ -533,7 +676,7 @@ impl Simulation {
                         .unwrap_or_else(|_| vec![f64::NAN; n])
                 };
                 let mut system = Canonical::new(&mut self.compiled);
-                integrate_with_crossings(
+                integrate_observed(
                     &mut system,
                     Method::Gauss,
                     t0,
@@ -542,7 +685,7 @@ impl Simulation {
                     &options,
                     &mut |t, y| {
                         let qd = velocity(t, y);
-                        on_row(rows.borrow_mut().row(t, &y[..n], &qd));
+                        on_row(rows.borrow_mut().row(t, &y[..n], &qd))
                     },
                     &mut |c: Crossing<'_>| {
                         let qd = velocity(c.t, c.y);
@@ -704,4 +847,32 @@ fn column_of(text: &str, name: &str) -> Option<usize> {
         from = end;
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unbound(name: &str) -> TapeError {
+        TapeError::UnboundSymbol { name: name.into() }
+    }
+
+    #[test]
+    fn a_coordinates_acceleration_left_in_the_equations_is_a_bug_not_a_missing_value() {
+        let coordinates = ["x".to_owned(), "y".to_owned()];
+        for name in ["y_dd", "x_ddd"] {
+            assert_eq!(
+                missing_value(unbound(name), &coordinates),
+                SimulationError::UnsolvedDerivative { name: name.into() }
+            );
+        }
+        // A parameter, a name that only starts like a coordinate, or a first rate (a state
+        // variable: never missing, but not an acceleration either) is a missing value.
+        for name in ["k", "yy_dd", "y_dx", "y_d"] {
+            assert_eq!(
+                missing_value(unbound(name), &coordinates),
+                SimulationError::MissingValue(unbound(name))
+            );
+        }
+    }
 }

@@ -44,13 +44,17 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub step: Option<f64>,
     /// Stop (exit 3, the rows so far written) after this many integration steps
-    /// (default: 10⁷).
+    /// (default: 10⁶).
     #[arg(long, value_name = "N")]
     pub max_steps: Option<u64>,
     /// Stop (exit 3, the rows so far written) when one more output row than this is due
-    /// (default: 10⁶).
+    /// (default: 10⁶); a span that asks for more rows every output step is refused.
     #[arg(long, value_name = "N")]
     pub max_rows: Option<u64>,
+    /// Stop (exit 3, the rows so far written) before the CSV grows past this many bytes
+    /// (default: 256 MiB).
+    #[arg(long, value_name = "N")]
+    pub max_bytes: Option<u64>,
     /// Override a parameter, an input, or an initial value for this run: `k=40`, `theta=0.3`,
     /// `theta_d=-1`; the value may be an expression of numbers and `pi` (`pi/4`). Repeatable.
     #[arg(long = "set", value_name = "NAME=VALUE")]
@@ -162,6 +166,7 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
         &mut simulation,
         &mut writer,
         args.plot.is_some(),
+        args.max_bytes.unwrap_or(lagrange::DEFAULT_MAX_BYTES),
         &mut |t| {
             // A progress bar only for runs long enough to need one; indicatif hides it when
             // stderr is not a terminal.
@@ -201,7 +206,7 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
             .map_err(|e| Failure::new(Exit::Output, e))?;
         eprintln!("wrote {}", path.display());
     }
-    Ok(exit_of(&Ending::of(&simulation, outcome), outcome.t))
+    Ok(exit_of(&run.ending, outcome.t))
 }
 
 /// `--events` and `--summary`, into the files created before the run.
@@ -239,13 +244,17 @@ fn exit_of(ending: &Ending, t: f64) -> Exit {
                     eprintln!("hint: {hint}");
                 }
             }
+            Ending::OutputLimit { .. } => {
+                eprintln!("error: {sentence}; the rows computed up to then were written");
+                eprintln!("hint: raise the limit with --max-bytes N, or write fewer rows with --output-step");
+            }
             Ending::ContactLost { .. } => {
                 eprintln!("{sentence}; run with --through-contact-loss to go on regardless");
             }
             _ => eprintln!("{sentence}"),
         }
     }
-    if matches!(ending, Ending::Failed(_)) {
+    if ending.stopped_short() {
         Exit::RunFailed
     } else {
         Exit::Success
@@ -257,6 +266,7 @@ fn hint(failure: &lagrange::numeric::Failure) -> Option<&'static str> {
     use lagrange::numeric::Failure as F;
     match failure {
         F::Stiff { .. } => Some("stiff: use --method sdirk"),
+        F::NotConverged { .. } => Some("if stiff, use --method sdirk; else give a smaller --step"),
         F::TooManySteps { .. } => Some("raise the limit with --max-steps N"),
         F::TooManyOutputs { .. } => {
             Some("raise the limit with --max-rows N, or write fewer rows with --output-step")
@@ -274,6 +284,9 @@ fn failure(error: lagrange::Error, args: &SimulateArgs) -> Failure {
         }
         lagrange::Error::Simulation(S::RecordCondition { reason, .. }) => {
             Failure::input(format!("--record-when: {reason}"))
+        }
+        lagrange::Error::Simulation(S::BeyondLimit { limit, .. }) => {
+            Failure::input(format!("{error} (--max-{limit}s N)"))
         }
         _ => Failure::of(error, &args.model),
     }

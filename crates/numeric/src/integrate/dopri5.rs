@@ -2,7 +2,9 @@
 //! controller, and Hairer's fourth-order continuous extension (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, §II.5 and the code DOPRI5).
 
-use super::{Driver, Failure, StopReason, STIFF_H_LAMBDA, STIFF_PROJECTED_STEPS, STIFF_STEPS};
+use super::{
+    Driver, Failure, Observer, StopReason, STIFF_H_LAMBDA, STIFF_PROJECTED_STEPS, STIFF_STEPS,
+};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A21: f64 = 0.2;
@@ -38,17 +40,14 @@ const D5: f64 = 701_980_252_875.0 / 199_316_789_632.0;
 const D6: f64 = -1_453_857_185.0 / 822_651_844.0;
 const D7: f64 = 69_997_945.0 / 29_380_423.0;
 
-pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
     match steps(driver, observer) {
         Ok(stop) => stop,
         Err(failure) => StopReason::Failed(failure),
     }
 }
 
-fn steps(
-    driver: &mut Driver<'_>,
-    observer: &mut dyn FnMut(f64, &[f64]),
-) -> Result<StopReason, Failure> {
+fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
     let mut k: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; n]);
     let mut stage = vec![0.0; n];
@@ -268,6 +267,12 @@ fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
     } else {
         (0.01 / d1.max(d2)).powf(0.2)
     };
+    // A span so long (or a start time so large) that even the dynamics' own estimate `h1`
+    // is below the step floor cannot be covered: say so now, with that step, rather than
+    // start at the floor, where the state would overflow.
+    if let Some(failure) = driver.too_small(driver.t, h1.min(span)) {
+        return Err(failure);
+    }
     // Not below the collapse floor: a guess that small is for the controller to shrink to.
     let floor = 10.0 * driver.step_floor(driver.t).0;
     Ok((100.0 * h0).min(h1).min(span).max(1e-12).max(floor))

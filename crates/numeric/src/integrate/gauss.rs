@@ -16,7 +16,7 @@
 //! [`super::STEP_COLLAPSE_FRACTION`] of the span stops the run as a collapse, as for the
 //! adaptive methods.
 
-use super::{hermite, Driver, Failure, StopReason};
+use super::{hermite, Driver, Failure, Observer, RhsError, StopReason, STIFF_PROJECTED_STEPS};
 
 const SQRT15: f64 = 3.872_983_346_207_417;
 const C: [f64; 3] = [0.5 - SQRT15 / 10.0, 0.5, 0.5 + SQRT15 / 10.0];
@@ -82,7 +82,17 @@ impl Stepper {
                             + A[s][1] * self.k[1][i]
                             + A[s][2] * self.k[2][i]);
                 }
-                driver.rhs(t + C[s] * h, &self.stage, &mut self.next[s])?;
+                // A stage that is not finite is the iteration diverging (a step beyond the
+                // fastest time scale: stiffness), unless the state itself is not.
+                match driver.rhs(t + C[s] * h, &self.stage, &mut self.next[s]) {
+                    Err(Failure::Rhs {
+                        error: RhsError::NotFinite,
+                        ..
+                    }) if y.iter().all(|v| v.is_finite()) => {
+                        return Err(Failure::NotConverged { t, h: h.abs() });
+                    }
+                    other => other?,
+                }
             }
             let mut change: f64 = 0.0;
             for s in 0..3 {
@@ -98,6 +108,10 @@ impl Stepper {
                 || (iteration > 2 && change >= previous && change < 1e-10)
             {
                 return Ok(());
+            }
+            // Growing changes well above rounding: the iteration diverges; no use going on.
+            if iteration > 2 && change > 2.0 * previous {
+                return Err(Failure::NotConverged { t, h: h.abs() });
             }
             previous = change;
         }
@@ -179,12 +193,19 @@ fn choose_step(
     span: f64,
 ) -> Result<(f64, f64), Failure> {
     let mut h = first_guess(&driver.y, f0, span);
+    // The motion's own time scale already below the step floor: the span is far too long.
+    if let Some(failure) = driver.too_small(driver.t, h) {
+        return Err(failure);
+    }
     let mut last = (h, f64::INFINITY);
+    // The smallest step at which the iteration did not converge.
+    let mut diverged: Option<Failure> = None;
     for _ in 0..PILOT_ROUNDS {
         let (norm, largest) = match pilot(driver, stepper, driver.direction * h, span) {
             Ok(measure) => measure,
             // Too large a step for the fixed-point iteration: try a quarter.
-            Err(Failure::NotConverged { .. }) => {
+            Err(failure @ Failure::NotConverged { .. }) => {
+                diverged = Some(failure);
                 h *= 0.25;
                 continue;
             }
@@ -202,20 +223,24 @@ fn choose_step(
         };
         h = (h * factor).min(span);
     }
+    // A step held down by the iteration's convergence (the problem is stiff for it) that
+    // would take very many steps, or no step that converged at all: say so now.
+    if let Some(failure) = diverged {
+        if last.1.is_infinite() || span / last.0 > STIFF_PROJECTED_STEPS {
+            return Err(failure);
+        }
+    }
     Ok(last)
 }
 
-pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
     match steps(driver, observer) {
         Ok(stop) => stop,
         Err(failure) => StopReason::Failed(failure),
     }
 }
 
-fn steps(
-    driver: &mut Driver<'_>,
-    observer: &mut dyn FnMut(f64, &[f64]),
-) -> Result<StopReason, Failure> {
+fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
     let span = (driver.t_end - driver.t).abs();
     if span == 0.0 {

@@ -11,7 +11,9 @@
 //! false) is handed to [`integrate_with_crossings`]'s callback as a [`Crossing`] — and ends
 //! with an [`Outcome`]: why it stopped ([`StopReason`], with the time of a
 //! failure: a non-finite value, a singular matrix, a step size underflow) and the work done
-//! ([`Stats`]). What was observed before a failure stays with the observer.
+//! ([`Stats`]). What was observed before a failure stays with the observer. An observer of
+//! [`integrate_observed`] may also end the run itself ([`StopReason::Halted`]: a consumer
+//! that has had enough, such as an output file at its size limit).
 
 mod dopri5;
 mod gauss;
@@ -19,6 +21,11 @@ pub use gauss::PILOT_STEPS;
 mod sdirk;
 
 use std::fmt;
+use std::ops::ControlFlow;
+
+/// What the methods call with each output row: `Break` ends the run there
+/// ([`StopReason::Halted`]).
+pub(crate) type Observer<'a> = dyn FnMut(f64, &[f64]) -> ControlFlow<()> + 'a;
 
 /// Why the right-hand side could not be evaluated at a state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -121,12 +128,20 @@ pub struct IntegratorOptions {
     /// Time between outputs; `None` reports every accepted step (default: `None`).
     pub output_step: Option<f64>,
     /// The most accepted steps before the run stops with [`Failure::TooManySteps`]
-    /// (default: 10⁷).
+    /// (default: [`DEFAULT_MAX_STEPS`]).
     pub max_steps: u64,
     /// The most observer calls (output rows) before the run stops with
-    /// [`Failure::TooManyOutputs`] (default: 10⁶); the rows up to the limit are reported.
+    /// [`Failure::TooManyOutputs`] (default: [`DEFAULT_MAX_OUTPUTS`]); the rows up to the
+    /// limit are reported.
     pub max_outputs: u64,
 }
+
+/// The default step limit: 10⁶ steps, a few seconds of work for the mechanics this crate
+/// serves even without optimization — beyond it a run is more likely runaway than wanted.
+pub const DEFAULT_MAX_STEPS: u64 = 1_000_000;
+
+/// The default output limit: 10⁶ rows.
+pub const DEFAULT_MAX_OUTPUTS: u64 = 1_000_000;
 
 /// An adaptive step below this fraction of the whole time span `|t_end − t₀|` ends the run
 /// with [`Failure::StepCollapse`]: at that size the span would take more than 10¹² steps, so
@@ -154,8 +169,8 @@ impl Default for IntegratorOptions {
             atol: 1e-10,
             step: None,
             output_step: None,
-            max_steps: 10_000_000,
-            max_outputs: 1_000_000,
+            max_steps: DEFAULT_MAX_STEPS,
+            max_outputs: DEFAULT_MAX_OUTPUTS,
         }
     }
 }
@@ -191,8 +206,10 @@ pub enum Failure {
         /// The step size.
         h: f64,
     },
-    /// An implicit stage solve did not converge at the fixed step.
-    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:e}; use a smaller step")]
+    /// An implicit stage solve did not converge at the fixed step (or, for gauss's chosen
+    /// step, only at a step so small that the span would take more than
+    /// [`STIFF_PROJECTED_STEPS`] steps).
+    #[error("at t = {t}: the implicit stage equations did not converge with h = {h:.3e}: gauss solves them by fixed-point iteration, which needs a step below the fastest time scale of the system; if the problem is stiff use the implicit method sdirk, else a smaller step")]
     NotConverged {
         /// When.
         t: f64,
@@ -200,7 +217,7 @@ pub enum Failure {
         h: f64,
     },
     /// The step limit was reached.
-    #[error("at t = {t}: the limit of {steps} steps was reached; raise the step limit if the run needs more")]
+    #[error("at t = {t} after {steps} steps: the step limit was reached; raise it if the run needs more steps")]
     TooManySteps {
         /// When.
         t: f64,
@@ -208,15 +225,17 @@ pub enum Failure {
         steps: u64,
     },
     /// The output limit was reached: the next row (at `t`) would be one more than `rows`.
-    #[error("at t = {t}: the limit of {rows} output rows was reached; raise the row limit or write a row every output step")]
+    #[error("at t = {t}: the row limit of {rows} output rows was reached; raise it, or write fewer rows (a row every output step)")]
     TooManyOutputs {
         /// When the next row was due.
         t: f64,
         /// The limit (rows written).
         rows: u64,
     },
-    /// The adaptive step fell below [`STEP_COLLAPSE_FRACTION`] of the time span.
-    #[error("at t = {t}: the step size collapsed to h = {h:e}, {fraction:e} of the time span {span}; the solution runs away (values too large?) or the problem is stiff")]
+    /// The adaptive step fell below [`STEP_COLLAPSE_FRACTION`] of the time span (or the
+    /// first step the dynamics ask for is already below it: the span is far too long for
+    /// them).
+    #[error("at t = {t}: the step size fell to h = {h:.3e}, {fraction:.1e} of the time span {span:?}, which would take more than 10¹² such steps: the end time is too far for the motion's time scale, the solution runs away (values too large?) or the problem is stiff")]
     StepCollapse {
         /// When.
         t: f64,
@@ -312,6 +331,11 @@ pub enum StopReason {
     },
     /// It failed; everything observed before is valid.
     Failed(Failure),
+    /// The observer ended the run after its row at `t` ([`integrate_observed`]).
+    Halted {
+        /// The time of the last row observed.
+        t: f64,
+    },
 }
 
 /// The result of [`integrate`].
@@ -366,6 +390,34 @@ pub fn integrate_with_crossings(
     observer: &mut dyn FnMut(f64, &[f64]),
     on_crossing: &mut dyn FnMut(Crossing<'_>),
 ) -> Outcome {
+    integrate_observed(
+        system,
+        method,
+        t0,
+        y0,
+        t_end,
+        options,
+        &mut |t, y| {
+            observer(t, y);
+            ControlFlow::Continue(())
+        },
+        on_crossing,
+    )
+}
+
+/// [`integrate_with_crossings`] with an observer that may end the run: after a row for
+/// which it returns `Break`, the run stops with [`StopReason::Halted`] at that row's time.
+#[allow(clippy::too_many_arguments)]
+pub fn integrate_observed(
+    system: &mut dyn OdeSystem,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    options: &IntegratorOptions,
+    observer: &mut dyn FnMut(f64, &[f64]) -> ControlFlow<()>,
+    on_crossing: &mut dyn FnMut(Crossing<'_>),
+) -> Outcome {
     let mut driver = Driver::new(system, t0, y0, t_end, options, on_crossing);
     if driver.options.max_outputs == 0 {
         return Outcome {
@@ -375,12 +427,15 @@ pub fn integrate_with_crossings(
             error_estimate: None,
         };
     }
-    observer(t0, y0);
     driver.outputs = 1;
-    let stop = match method {
-        Method::Dopri5 => dopri5::run(&mut driver, observer),
-        Method::Gauss => gauss::run(&mut driver, observer),
-        Method::Sdirk => sdirk::run(&mut driver, observer),
+    let stop = if observer(t0, y0).is_break() {
+        StopReason::Halted { t: t0 }
+    } else {
+        match method {
+            Method::Dopri5 => dopri5::run(&mut driver, observer),
+            Method::Gauss => gauss::run(&mut driver, observer),
+            Method::Sdirk => sdirk::run(&mut driver, observer),
+        }
     };
     Outcome {
         stop,
@@ -478,52 +533,89 @@ impl<'s> Driver<'s> {
         t1: f64,
         y1: &[f64],
         interpolate: &dyn Fn(f64, &mut [f64]),
-        observer: &mut dyn FnMut(f64, &[f64]),
+        observer: &mut Observer<'_>,
     ) -> Option<StopReason> {
         self.stats.steps += 1;
-        // Events: every sign change in this step, located by bisection on the interpolant;
-        // the first of a stopping event ends the run there.
+        let stop_event = self.events_in_step(t1, y1, interpolate);
+        self.report_crossings(stop_event, interpolate);
+        if let Some(stop) = self.outputs_in_step(t1, y1, stop_event, interpolate, observer) {
+            return Some(stop);
+        }
+        self.advance(t1, y1, stop_event, interpolate, observer)
+    }
+
+    /// Every sign change of an event function in the step to `t1`, located by bisection on
+    /// the interpolant: the recording ones go to `self.recorded`; the first stopping one is
+    /// returned (its index and time).
+    fn events_in_step(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        interpolate: &dyn Fn(f64, &mut [f64]),
+    ) -> Option<(usize, f64)> {
         let mut stop_event: Option<(usize, f64)> = None;
         self.recorded.clear();
-        if !self.events_before.is_empty() {
-            self.system.events(t1, y1, &mut self.events_after);
-            for k in 0..self.events_before.len() {
-                let (g0, g1) = (self.events_before[k], self.events_after[k]);
-                if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
-                    let t = self.locate(k, g0, t1, interpolate);
-                    if self.system.event_stops(k) {
-                        let earlier =
-                            stop_event.is_none_or(|(_, s)| (t - s) * self.direction < 0.0);
-                        if earlier {
-                            stop_event = Some((k, t));
-                        }
-                    } else {
-                        self.recorded.push((k, t, g0 < 0.0));
+        if self.events_before.is_empty() {
+            return None;
+        }
+        self.system.events(t1, y1, &mut self.events_after);
+        for k in 0..self.events_before.len() {
+            let (g0, g1) = (self.events_before[k], self.events_after[k]);
+            if g0 != 0.0 && (g0 * g1 < 0.0 || g1 == 0.0) {
+                let t = self.locate(k, g0, t1, interpolate);
+                if self.system.event_stops(k) {
+                    let earlier = stop_event.is_none_or(|(_, s)| (t - s) * self.direction < 0.0);
+                    if earlier {
+                        stop_event = Some((k, t));
                     }
+                } else {
+                    self.recorded.push((k, t, g0 < 0.0));
                 }
             }
-            std::mem::swap(&mut self.events_before, &mut self.events_after);
         }
-        if !self.recorded.is_empty() {
-            let direction = self.direction;
-            self.recorded
-                .sort_by(|a, b| (a.1 * direction).total_cmp(&(b.1 * direction)));
-            for &(index, t, rising) in &self.recorded {
-                // A crossing at the stop itself is kept; one past it did not happen.
-                if stop_event.is_some_and(|(_, s)| (t - s) * direction > 0.0) {
-                    break;
-                }
-                interpolate(t, &mut self.scratch);
-                (self.on_crossing)(Crossing {
-                    index,
-                    t,
-                    rising,
-                    y: &self.scratch,
-                });
+        std::mem::swap(&mut self.events_before, &mut self.events_after);
+        stop_event
+    }
+
+    /// Hands the recorded crossings of the step to the callback in time order, none after
+    /// the stop.
+    fn report_crossings(
+        &mut self,
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+    ) {
+        if self.recorded.is_empty() {
+            return;
+        }
+        let direction = self.direction;
+        self.recorded
+            .sort_by(|a, b| (a.1 * direction).total_cmp(&(b.1 * direction)));
+        for &(index, t, rising) in &self.recorded {
+            // A crossing at the stop itself is kept; one past it did not happen.
+            if stop_event.is_some_and(|(_, s)| (t - s) * direction > 0.0) {
+                break;
             }
+            interpolate(t, &mut self.scratch);
+            (self.on_crossing)(Crossing {
+                index,
+                t,
+                rising,
+                y: &self.scratch,
+            });
         }
+    }
+
+    /// The output rows due inside the step (up to the stop event, before the end time):
+    /// every output step on the interpolant, or the step's end.
+    fn outputs_in_step(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+        observer: &mut Observer<'_>,
+    ) -> Option<StopReason> {
         let horizon = stop_event.map_or(t1, |(_, t)| t);
-        // Outputs inside the step.
         match self.options.output_step {
             Some(step) if step.is_finite() && step > 0.0 => {
                 while let Some(to) = self.next_output {
@@ -536,11 +628,16 @@ impl<'s> Driver<'s> {
                         return Some(stop);
                     }
                     interpolate(to, &mut self.scratch);
-                    observer(to, &self.scratch);
+                    let flow = observer(to, &self.scratch);
                     self.outputs += 1;
                     self.output_index += 1;
                     self.next_output =
                         Some(self.t0 + self.direction * step * self.output_index as f64);
+                    if flow.is_break() {
+                        self.t = to;
+                        self.y.copy_from_slice(&self.scratch);
+                        return Some(StopReason::Halted { t: to });
+                    }
                 }
             }
             _ => {
@@ -548,17 +645,36 @@ impl<'s> Driver<'s> {
                     if let Some(stop) = self.no_room(t1) {
                         return Some(stop);
                     }
-                    observer(t1, y1);
+                    let flow = observer(t1, y1);
                     self.outputs += 1;
+                    if flow.is_break() {
+                        self.t = t1;
+                        self.y.copy_from_slice(y1);
+                        return Some(StopReason::Halted { t: t1 });
+                    }
                 }
             }
         }
+        None
+    }
+
+    /// Moves to the step's end (or to the stop event, with its row), with the final row at
+    /// the end time; the step limit.
+    fn advance(
+        &mut self,
+        t1: f64,
+        y1: &[f64],
+        stop_event: Option<(usize, f64)>,
+        interpolate: &dyn Fn(f64, &mut [f64]),
+        observer: &mut Observer<'_>,
+    ) -> Option<StopReason> {
         if let Some((index, t)) = stop_event {
             if let Some(stop) = self.no_room(t) {
                 return Some(stop);
             }
             interpolate(t, &mut self.scratch);
-            observer(t, &self.scratch);
+            // The event's row is its last: a halt there changes nothing.
+            let _ = observer(t, &self.scratch);
             self.outputs += 1;
             self.t = t;
             self.y.copy_from_slice(&self.scratch);
@@ -572,7 +688,8 @@ impl<'s> Driver<'s> {
         self.t = t1;
         self.y.copy_from_slice(y1);
         if t1 == self.t_end {
-            observer(t1, y1);
+            // The last row: the run is finished whatever the observer says.
+            let _ = observer(t1, y1);
             self.outputs += 1;
             return Some(StopReason::Finished);
         }

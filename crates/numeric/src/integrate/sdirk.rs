@@ -5,13 +5,13 @@
 //! error estimate compares with the embedded first-order solution `y + h K₁`; a Newton solve
 //! that does not converge rejects the step and retries with a quarter of it.
 
-use super::{hermite, Driver, Failure, StopReason};
+use super::{hermite, Driver, Failure, Observer, StopReason};
 use crate::linalg::solve_in_place;
 
 const GAMMA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
 const NEWTON_ITERATIONS: usize = 10;
 
-pub(super) fn run(driver: &mut Driver<'_>, observer: &mut dyn FnMut(f64, &[f64])) -> StopReason {
+pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
     match steps(driver, observer) {
         Ok(stop) => stop,
         Err(failure) => StopReason::Failed(failure),
@@ -27,28 +27,53 @@ struct Work {
     value: Vec<f64>,
 }
 
-fn steps(
-    driver: &mut Driver<'_>,
-    observer: &mut dyn FnMut(f64, &[f64]),
-) -> Result<StopReason, Failure> {
+/// The states and derivatives of one step.
+struct Step {
+    /// `F(t, y)` at the step's start.
+    f0: Vec<f64>,
+    /// The stage derivatives `K₁ = F(t + γh, Y₁)` and `K₂ = F(t + h, y₁)`.
+    k1: Vec<f64>,
+    k2: Vec<f64>,
+    stage1: Vec<f64>,
+    /// The new state (stage 2: the method is stiffly accurate).
+    y1: Vec<f64>,
+    base: Vec<f64>,
+    error: Vec<f64>,
+}
+
+impl Work {
+    fn new(n: usize) -> Work {
+        Work {
+            n,
+            jacobian: vec![0.0; n * n],
+            matrix: vec![0.0; n * n],
+            residual: vec![0.0; n],
+            perturbed: vec![0.0; n],
+            value: vec![0.0; n],
+        }
+    }
+}
+
+impl Step {
+    fn new(n: usize) -> Step {
+        Step {
+            f0: vec![0.0; n],
+            k1: vec![0.0; n],
+            k2: vec![0.0; n],
+            stage1: vec![0.0; n],
+            y1: vec![0.0; n],
+            base: vec![0.0; n],
+            error: vec![0.0; n],
+        }
+    }
+}
+
+fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
-    let mut work = Work {
-        n,
-        jacobian: vec![0.0; n * n],
-        matrix: vec![0.0; n * n],
-        residual: vec![0.0; n],
-        perturbed: vec![0.0; n],
-        value: vec![0.0; n],
-    };
-    let mut f0 = vec![0.0; n];
-    let mut k1 = vec![0.0; n];
-    let mut k2 = vec![0.0; n];
-    let mut stage1 = vec![0.0; n];
-    let mut y1 = vec![0.0; n];
-    let mut base = vec![0.0; n];
-    let mut error = vec![0.0; n];
+    let mut work = Work::new(n);
+    let mut step = Step::new(n);
     let y = driver.y.clone();
-    driver.rhs(driver.t, &y, &mut f0)?;
+    driver.rhs(driver.t, &y, &mut step.f0)?;
     let span = (driver.t_end - driver.t).abs();
     let mut h = match driver.options.step {
         Some(h) if h.is_finite() && h > 0.0 => h,
@@ -68,44 +93,15 @@ fn steps(
         let hs = h * driver.direction;
         if !jacobian_fresh {
             let y = driver.y.clone();
-            jacobian(driver, &mut work, t, &y, &f0)?;
+            jacobian(driver, &mut work, t, &y, &step.f0)?;
             jacobian_fresh = true;
         }
-        for i in 0..n {
-            for j in 0..n {
-                let identity = if i == j { 1.0 } else { 0.0 };
-                work.matrix[i * n + j] = identity - hs * GAMMA * work.jacobian[i * n + j];
-            }
-        }
-        // Stage 1 from y, stage 2 from y + h(1 − γ) K₁; the predictor is y (then stage 1).
-        base.copy_from_slice(&driver.y);
-        stage1.copy_from_slice(&driver.y);
-        let solved = newton(
-            driver,
-            &mut work,
-            t + GAMMA * hs,
-            hs,
-            &base,
-            &mut stage1,
-            &mut k1,
-        )?;
-        let solved = solved && {
-            for i in 0..n {
-                base[i] = driver.y[i] + hs * (1.0 - GAMMA) * k1[i];
-            }
-            y1.copy_from_slice(&stage1);
-            newton(driver, &mut work, t + hs, hs, &base, &mut y1, &mut k2)?
-        };
-        if !solved {
+        let Some(err) = attempt(driver, &mut work, &mut step, t, hs)? else {
             driver.stats.rejected += 1;
             h *= 0.25;
             jacobian_fresh = false;
             continue;
-        }
-        for i in 0..n {
-            error[i] = hs * GAMMA * (k2[i] - k1[i]);
-        }
-        let err = driver.error_norm(&driver.y, &y1, &error);
+        };
         let factor = if err == 0.0 {
             5.0
         } else {
@@ -121,22 +117,89 @@ fn steps(
             continue;
         }
         let t1 = if last { driver.t_end } else { t + hs };
-        let y0 = driver.y.clone();
-        // Stiffly accurate: K₂ = F(t + h, y₁), the derivative at the new point.
-        let interpolate =
-            |at: f64, out: &mut [f64]| hermite((t, &y0, &f0), (t1, &y1, &k2), at, out);
-        if let Some(stop) = driver.accept(t1, &y1, &interpolate, observer) {
+        if let Some(stop) = finish(driver, &mut step, t, t1, observer)? {
             return Ok(stop);
-        }
-        if driver.project()? {
-            let y = driver.y.clone();
-            driver.rhs(driver.t, &y, &mut f0)?;
-        } else {
-            f0.copy_from_slice(&k2);
         }
         jacobian_fresh = false;
         h *= factor;
     }
+}
+
+/// One try of a step `hs` from `(t, driver.y)` with the Jacobian in `work`: both stages by
+/// Newton; the error norm, or `None` when a Newton solve did not converge.
+fn attempt(
+    driver: &mut Driver<'_>,
+    work: &mut Work,
+    step: &mut Step,
+    t: f64,
+    hs: f64,
+) -> Result<Option<f64>, Failure> {
+    let n = work.n;
+    for i in 0..n {
+        for j in 0..n {
+            let identity = if i == j { 1.0 } else { 0.0 };
+            work.matrix[i * n + j] = identity - hs * GAMMA * work.jacobian[i * n + j];
+        }
+    }
+    // Stage 1 from y, stage 2 from y + h(1 − γ) K₁; the predictor is y (then stage 1).
+    step.base.copy_from_slice(&driver.y);
+    step.stage1.copy_from_slice(&driver.y);
+    let solved = newton(
+        driver,
+        work,
+        t + GAMMA * hs,
+        hs,
+        &step.base,
+        &mut step.stage1,
+        &mut step.k1,
+    )?;
+    let solved = solved && {
+        for i in 0..n {
+            step.base[i] = driver.y[i] + hs * (1.0 - GAMMA) * step.k1[i];
+        }
+        step.y1.copy_from_slice(&step.stage1);
+        newton(
+            driver,
+            work,
+            t + hs,
+            hs,
+            &step.base,
+            &mut step.y1,
+            &mut step.k2,
+        )?
+    };
+    if !solved {
+        return Ok(None);
+    }
+    for i in 0..n {
+        step.error[i] = hs * GAMMA * (step.k2[i] - step.k1[i]);
+    }
+    Ok(Some(driver.error_norm(&driver.y, &step.y1, &step.error)))
+}
+
+/// Hands the accepted step from `t` to `t1` to the driver, then projects and takes the
+/// new start's derivative; `Some` when the run stops.
+fn finish(
+    driver: &mut Driver<'_>,
+    step: &mut Step,
+    t: f64,
+    t1: f64,
+    observer: &mut Observer<'_>,
+) -> Result<Option<StopReason>, Failure> {
+    let y0 = driver.y.clone();
+    // Stiffly accurate: K₂ = F(t + h, y₁), the derivative at the new point.
+    let (f0, y1, k2) = (&step.f0, &step.y1, &step.k2);
+    let interpolate = |at: f64, out: &mut [f64]| hermite((t, &y0, f0), (t1, y1, k2), at, out);
+    if let Some(stop) = driver.accept(t1, y1, &interpolate, observer) {
+        return Ok(Some(stop));
+    }
+    if driver.project()? {
+        let y = driver.y.clone();
+        driver.rhs(driver.t, &y, &mut step.f0)?;
+    } else {
+        step.f0.copy_from_slice(&step.k2);
+    }
+    Ok(None)
 }
 
 /// `J = ∂F/∂y` at `(t, y)` by forward differences.

@@ -367,6 +367,25 @@ fn a_stiff_problem_stops_the_explicit_method_and_not_the_implicit_one() {
         }
         other => panic!("{other:?}"),
     }
+    // Gauss's fixed-point iteration diverges at any step above ~1/λ: it stops at once,
+    // saying so and naming sdirk (it used to diverge into "a value is not finite").
+    let (outcome, rows) = count_rows(
+        &mut ProtheroRobinson { lambda: 1e6 },
+        Method::Gauss,
+        &[1.0],
+        10.0,
+        &options,
+    );
+    match outcome.stop {
+        StopReason::Failed(failure @ Failure::NotConverged { t, h }) => {
+            assert_eq!(t, 0.0);
+            assert!(h * 1e6 > 0.5, "h = {h}");
+            assert!(failure.to_string().contains("sdirk"), "{failure}");
+        }
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(rows, 1);
+    assert!(outcome.stats.evaluations < 100_000, "{:?}", outcome.stats);
     // The same problem is routine for the L-stable method.
     let (outcome, _) = count_rows(
         &mut ProtheroRobinson { lambda: 1e6 },
@@ -521,4 +540,102 @@ fn gauss_chooses_its_step_from_the_dynamics_and_its_estimate_bounds_the_error() 
             "ω = {omega}: {per_period} steps per period"
         );
     }
+}
+
+#[test]
+fn a_span_far_too_long_for_the_motion_stops_at_once_at_the_motions_own_step() {
+    // The oscillator's period is 2π: an end time of 1e29 (or 1e308, where stepping at the
+    // floor overflowed the state into "not finite") would take ~1e30 steps.
+    for t_end in [1e29, 1e308] {
+        for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+            let (outcome, rows) = count_rows(
+                &mut Oscillator { events: false },
+                method,
+                &[1.0, 0.0],
+                t_end,
+                &IntegratorOptions::default(),
+            );
+            match outcome.stop {
+                StopReason::Failed(Failure::StepCollapse { t, h, span, .. }) => {
+                    assert_eq!((t, span), (0.0, t_end), "{method}");
+                    assert!(h < STEP_COLLAPSE_FRACTION * span, "{method}: h = {h}");
+                }
+                other => panic!("{method} to {t_end}: {other:?}"),
+            }
+            assert_eq!(rows, 1, "{method}");
+            assert!(outcome.stats.steps == 0, "{method}: {:?}", outcome.stats);
+            assert!(
+                outcome.stats.evaluations < 2_000,
+                "{method}: {:?}",
+                outcome.stats
+            );
+        }
+        // The explicit method reports the step the dynamics ask for, not a step near the
+        // floor: about a tenth of the motion's time scale.
+        let (outcome, _) = count_rows(
+            &mut Oscillator { events: false },
+            Method::Dopri5,
+            &[1.0, 0.0],
+            t_end,
+            &IntegratorOptions::default(),
+        );
+        let StopReason::Failed(Failure::StepCollapse { h, .. }) = outcome.stop else {
+            unreachable!()
+        };
+        assert!(h > 1e-4 && h < 1.0, "h = {h}");
+    }
+}
+
+#[test]
+fn an_observer_that_breaks_halts_the_run_after_its_row() {
+    for (method, output_step) in [
+        (Method::Dopri5, None),
+        (Method::Dopri5, Some(0.01)),
+        (Method::Gauss, Some(0.01)),
+        (Method::Sdirk, None),
+    ] {
+        let options = IntegratorOptions {
+            output_step,
+            ..IntegratorOptions::default()
+        };
+        let mut rows: Vec<(f64, f64)> = Vec::new();
+        let outcome = integrate_observed(
+            &mut Oscillator { events: false },
+            method,
+            0.0,
+            &[1.0, 0.0],
+            10.0,
+            &options,
+            &mut |t, y| {
+                rows.push((t, y[0]));
+                if rows.len() == 7 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+            &mut |_| {},
+        );
+        assert_eq!(rows.len(), 7, "{method}");
+        let (t, x) = rows[6];
+        assert_eq!(outcome.stop, StopReason::Halted { t }, "{method}");
+        assert_eq!(outcome.t, t, "{method}");
+        assert!(
+            t > 0.0 && (x - t.cos()).abs() < 1e-5,
+            "{method}: x({t}) = {x}"
+        );
+    }
+    // Breaking at the initial row: nothing is integrated.
+    let outcome = integrate_observed(
+        &mut Oscillator { events: false },
+        Method::Dopri5,
+        0.0,
+        &[1.0, 0.0],
+        10.0,
+        &IntegratorOptions::default(),
+        &mut |_, _| ControlFlow::Break(()),
+        &mut |_| {},
+    );
+    assert_eq!(outcome.stop, StopReason::Halted { t: 0.0 });
+    assert_eq!(outcome.stats.evaluations, 0);
 }
