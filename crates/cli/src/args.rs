@@ -91,6 +91,9 @@ pub enum Command {
     /// Simulate a model: integrate the equations of motion, write the time history as CSV
     /// (`t`, coordinates, rates `q_d`, energy error, constraint drift) and a summary line.
     Simulate(crate::commands::simulate::SimulateArgs),
+    /// Draw the system at its initial state (or `--at` another) as an SVG figure: supports,
+    /// rods, disks, masses, springs, dampers, forces, gravity, and each coordinate marked.
+    Draw(crate::commands::draw::DrawArgs),
     /// Print the normal form of an expression (SymPy syntax; rates as `q_d`, `q_dd`).
     Simplify {
         /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)" (a leading minus needs no `--`).

@@ -2,6 +2,7 @@
 
 use lagrange::{cas, model};
 mod check;
+pub mod draw;
 mod eom;
 mod equilibria;
 mod expression;
@@ -36,6 +37,7 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
             initial,
         } => equilibria::run(&model, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Draw(args) => draw::run(&args),
         Command::Simplify {
             expr,
             format,
