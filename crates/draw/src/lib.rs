@@ -76,6 +76,8 @@ pub struct Figure {
     pub view: View,
     /// Each label's id and page box.
     pub labels: Vec<(String, Rect)>,
+    /// The labels that touch the drawing because no clear place was found near their point.
+    pub touching: Vec<String>,
 }
 
 /// The figure of `model` at `at`.
@@ -87,11 +89,12 @@ pub fn figure(model: &model::Model, at: Configuration) -> Result<Figure, DrawErr
     let sampler = sample::Sampler::new(model, at)?;
     let (scene, plane) = build::scene(&sampler)?;
     let view = view::fit(&scene, plane);
-    let (svg, labels) = svg::write(&scene, &view);
+    let written = svg::write(&scene, &view);
     Ok(Figure {
-        svg,
+        svg: written.svg,
         scene,
         view,
-        labels,
+        labels: written.labels,
+        touching: written.touching,
     })
 }

@@ -28,8 +28,16 @@ struct Label {
     anchor: Pt,
 }
 
-/// The SVG of `scene` in `view`, and the boxes of its labels (in the order written).
-pub(crate) fn write(scene: &Scene, view: &View) -> (String, Vec<(String, Rect)>) {
+/// What the writer gives: the SVG text, each label's id and box (in the order written), and
+/// the ids of the labels that found no place clear of the drawing.
+pub(crate) struct Written {
+    pub svg: String,
+    pub labels: Vec<(String, Rect)>,
+    pub touching: Vec<String>,
+}
+
+/// The SVG of `scene` in `view`.
+pub(crate) fn write(scene: &Scene, view: &View) -> Written {
     let mut w = Writer {
         view,
         body: String::new(),
@@ -53,6 +61,7 @@ pub(crate) fn write(scene: &Scene, view: &View) -> (String, Vec<(String, Rect)>)
     let rects = place(&requests, &w.obstacles);
     let mut text = String::new();
     let mut boxes = Vec::new();
+    let mut touching = Vec::new();
     for (label, r) in w.labels.iter().zip(&rects) {
         let _ = writeln!(
             text,
@@ -68,6 +77,9 @@ pub(crate) fn write(scene: &Scene, view: &View) -> (String, Vec<(String, Rect)>)
             escape(&label.text)
         );
         boxes.push((label.id.clone(), *r));
+        if w.obstacles.iter().any(|o| o.meets(r)) {
+            touching.push(label.id.clone());
+        }
     }
     let (lo, hi) = extent(&w.obstacles, &rects);
     let svg = format!(
@@ -101,7 +113,11 @@ pub(crate) fn write(scene: &Scene, view: &View) -> (String, Vec<(String, Rect)>)
         w.body,
         text
     );
-    (svg, boxes)
+    Written {
+        svg,
+        labels: boxes,
+        touching,
+    }
 }
 
 const STYLE: &str = concat!(
