@@ -92,3 +92,22 @@ fn the_model_file_is_never_overwritten_and_a_bad_output_exits_5() {
     assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_committed_seed_figures_are_what_draw_makes() {
+    for name in [
+        "7.1-cart-pendulum",
+        "7.2-rolling-cone",
+        "7.3-gears-pendulum",
+        "7.4-inverted-pendulum",
+    ] {
+        let o = lagrange(&["draw", &format!("examples/seed/{name}.lag")]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let committed = std::fs::read_to_string(root().join(format!("examples/seed/{name}.svg")))
+            .expect("the figure is committed");
+        assert!(
+            stdout(&o) == committed,
+            "examples/seed/{name}.svg is stale: run `lagrange draw examples/seed/{name}.lag --out examples/seed/{name}.svg`"
+        );
+    }
+}

@@ -626,7 +626,14 @@ fn structure(context: &Context<'_, '_>, items: &mut Vec<Item>) {
     let here = &context.here;
     let mut rods: Vec<(P3, P3)> = Vec::new();
     for &(a, b) in &context.links {
-        rods.push((here.points[a], here.points[b]));
+        if slides_on(context, a, b) {
+            items.push(Item::Sphere {
+                centre: here.points[a],
+                radius: norm(sub(here.points[b], here.points[a])),
+            });
+        } else {
+            rods.push((here.points[a], here.points[b]));
+        }
     }
     let mut centres = Vec::new();
     for (b, shape) in context.shapes.iter().enumerate() {
@@ -674,6 +681,26 @@ fn structure(context: &Context<'_, '_>, items: &mut Vec<Item>) {
     for (at, _) in joints {
         items.push(Item::Hinge { at });
     }
+}
+
+/// Whether point `i`, at a fixed distance from the fixed point `a`, is in contact along that
+/// line (`reaction …: contact P on … normal n` with n along `a`→`i`): it slides on a fixed
+/// sphere about `a` rather than hanging from a rod.
+fn slides_on(context: &Context<'_, '_>, a: usize, i: usize) -> bool {
+    let here = &context.here;
+    let Some(d) = unit(sub(here.points[i], here.points[a])) else {
+        return false;
+    };
+    context.fixed[a]
+        && context.sampler.model.releases().iter().any(|r| {
+            let normal = r
+                .direction
+                .as_ref()
+                .and_then(|n| context.sampler.vector(n).ok()?);
+            r.word == ReleaseWord::Contact
+                && r.point.index() == i
+                && normal.is_some_and(|n| norm(cross(n, d)) < 1e-9 * (1.0 + norm(n)))
+        })
 }
 
 /// Where hinges go, and whether each is fixed (then it stands on a support): a fixed rod end
@@ -743,6 +770,13 @@ fn surfaces(context: &Context<'_, '_>, items: &mut Vec<Item>) {
                 Some(ConstraintKind::Rolling { contact, .. }) => contact.index(),
                 _ => release.point.index(),
             };
+            if context
+                .links
+                .iter()
+                .any(|&(a, i)| i == at && slides_on(context, a, i))
+            {
+                continue;
+            }
             add_surface(at, n, 0.4 * context.size, items);
         }
     }
@@ -848,6 +882,7 @@ fn labels(context: &Context<'_, '_>, items: &mut Vec<Item>) {
             Item::Spring { a, b } | Item::Damper { a, b } => vec![*a, *b],
             Item::Arrow { from, .. } => vec![*from],
             Item::Hinge { at } | Item::Support { at, .. } => vec![*at],
+            Item::Sphere { centre, .. } => vec![*centre],
             _ => Vec::new(),
         };
         for p in at {

@@ -57,21 +57,28 @@ pub(crate) fn coordinates(context: &Context<'_, '_>) -> Result<(Marks, Vec<Strin
         let name = crate::names::symbol(&coordinate.name.name);
         let q = context.sampler.at.coordinates[k];
         let segments = segments(context, k);
-        let found = segments
-            .iter()
-            .find(|s| turns(s) && still(s))
-            .or_else(|| segments.iter().find(|s| turns(s)));
-        if let Some(s) = found {
-            let mark = angle(context, s, q, &name, &mut marks.items);
-            marks.marks.push((k, mark));
+        let fixed = segments.iter().find(|s| turns(s) && still(s));
+        let moving = segments.iter().find(|s| turns(s));
+        // A spatial system's angle without a fixed pivot is clearer as its frame's rotation;
+        // a planar one's at the moving end of what it turns (a ladder's foot).
+        let rotation = match (fixed, context.plane) {
+            (None, None) => frame_rotation(context, k)?,
+            _ => None,
+        };
+        let mark = if let Some(s) = fixed.or(if rotation.is_some() { None } else { moving }) {
+            Some(angle(context, s, q, &name, &mut marks.items))
+        } else if let Some((n, zero)) = rotation {
+            Some(frame_angle(context, n, zero, q, &name, &mut marks.items))
         } else if let Some((i, u)) = displaced(context, k)? {
-            let mark = displacement(context, i, u, q, &name, &mut marks.items);
-            marks.marks.push((k, mark));
+            Some(displacement(context, i, u, q, &name, &mut marks.items))
         } else if let Some((n, zero)) = frame_rotation(context, k)? {
-            let mark = frame_angle(context, n, zero, q, &name, &mut marks.items);
-            marks.marks.push((k, mark));
+            Some(frame_angle(context, n, zero, q, &name, &mut marks.items))
         } else {
-            unmarked.push(coordinate.name.name.clone());
+            None
+        };
+        match mark {
+            Some(mark) => marks.marks.push((k, mark)),
+            None => unmarked.push(coordinate.name.name.clone()),
         }
     }
     Ok((marks, unmarked))

@@ -49,6 +49,13 @@ pub enum Item {
         /// The unit vector pointing into the ground.
         side: P3,
     },
+    /// A fixed round surface a point slides on (a sphere, a cylinder), seen as a circle.
+    Sphere {
+        /// Its centre.
+        centre: P3,
+        /// Its radius.
+        radius: f64,
+    },
     /// A fixed support at a pivot: a triangle on hatched ground, pointing away from `down`.
     Support {
         /// The pivot.

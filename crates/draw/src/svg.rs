@@ -301,6 +301,18 @@ impl Writer<'_> {
                 size,
             } => self.block(name, *centre, *along, *size),
             Item::Track { a, b, side } => self.track(*a, *b, *side),
+            Item::Sphere { centre, radius } => {
+                let c = self.p(*centre);
+                let r = radius * self.view.scale;
+                self.circle(
+                    c,
+                    r,
+                    &format!(
+                        r##"class="surface" fill="#dcdcdc" stroke="{INK}" stroke-width="1.5""##
+                    ),
+                );
+                self.ring(c, r);
+            }
             Item::Support { at, down } => self.support(*at, *down),
             Item::Wall { at, normal } => self.wall(*at, *normal),
             Item::Hinge { at } => {
@@ -362,17 +374,7 @@ impl Writer<'_> {
         if facing {
             let r = radius * self.view.scale;
             self.circle(c, r, &attrs);
-            // The rim, for labels: a ring of segments.
-            let ring: Vec<Pt> = (0..=32)
-                .map(|k| {
-                    let t = std::f64::consts::TAU * f64::from(k) / 32.0;
-                    (c.0 + r * t.cos(), c.1 + r * t.sin())
-                })
-                .collect();
-            for pair in ring.windows(2) {
-                self.obstacles
-                    .push(Obstacle::Segment(pair[0], pair[1], 1.0));
-            }
+            self.ring(c, r);
         } else {
             let start = sub(marker, centre);
             let points: Vec<Pt> = (0..48)
@@ -392,6 +394,20 @@ impl Writer<'_> {
         );
         let r = radius * self.view.scale;
         self.label(name, name, "body", (c.0 + 0.7 * r, c.1 - 0.7 * r));
+    }
+
+    /// A circle's rim as an obstacle (labels may sit inside a disk, clear of its rim).
+    fn ring(&mut self, c: Pt, r: f64) {
+        let ring: Vec<Pt> = (0..=32)
+            .map(|k| {
+                let t = std::f64::consts::TAU * f64::from(k) / 32.0;
+                (c.0 + r * t.cos(), c.1 + r * t.sin())
+            })
+            .collect();
+        for pair in ring.windows(2) {
+            self.obstacles
+                .push(Obstacle::Segment(pair[0], pair[1], 1.0));
+        }
     }
 
     fn block(&mut self, name: &str, centre: P3, along: P3, size: f64) {

@@ -101,7 +101,7 @@ fn bounds(scene: &Scene, view: &View) -> ((f64, f64), (f64, f64)) {
                 take(*from);
                 take(*to);
             }
-            Item::Disk { centre, radius, .. } => {
+            Item::Disk { centre, radius, .. } | Item::Sphere { centre, radius } => {
                 for d in [view.u, view.v] {
                     take(crate::sample::add(
                         *centre,

@@ -35,9 +35,12 @@ pub fn run(args: &DrawArgs) -> Result<Exit, Failure> {
             )));
         }
     }
+    if let Some(out) = &args.out {
+        // Before any work: the model file is never written over.
+        check_output(out, path)?;
+    }
     let (time, rest) = split_time(&args.at)?;
-    let analysis = super::load(path, &[])?;
-    let mut analysis = analysis;
+    let mut analysis = super::load(path, &[])?;
     for item in &rest {
         let assignment =
             lagrange::parse_assignment(item).map_err(|e| Failure::input(format!("--at {e}")))?;
@@ -48,7 +51,7 @@ pub fn run(args: &DrawArgs) -> Result<Exit, Failure> {
     let figure = analysis.figure(time).map_err(|e| Failure::of(e, path))?;
     match &args.out {
         None => print(&figure.svg)?,
-        Some(out) => write(out, path, &figure.svg)?,
+        Some(out) => write(out, &figure.svg)?,
     }
     Ok(Exit::Success)
 }
@@ -75,8 +78,7 @@ fn split_time(items: &[String]) -> Result<(f64, Vec<String>), Failure> {
     Ok((time, rest))
 }
 
-fn write(out: &Path, model: &Path, svg: &str) -> Result<(), Failure> {
-    check_output(out, model)?;
+fn write(out: &Path, svg: &str) -> Result<(), Failure> {
     std::fs::write(out, svg).map_err(|e| output_error(&format!("`{}`", out.display()), &e))?;
     println(&format!("wrote {}", out.display()))
 }
