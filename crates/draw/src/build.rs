@@ -45,7 +45,7 @@ pub(crate) struct Context<'s, 'm> {
 /// How a body is drawn.
 #[derive(Clone, Debug)]
 pub(crate) enum Shape {
-    /// A slender rod between two points; `ends` are the named points at or near its ends.
+    /// A slender rod from `a` to `b`; `points` are the named points the body carries.
     Rod { a: P3, b: P3, points: Vec<usize> },
     /// A disk of `radius` about the body's centre, normal `normal`, with an optional shaft to
     /// a point on its axis; `axis` is the body axis its radius line follows.

@@ -262,8 +262,23 @@ fn displacement(
     let origin = sub(at, scale(q, u));
     let along = unit(u).unwrap_or([1.0, 0.0, 0.0]);
     let up = scale(-1.0, context.down);
+    // Above a horizontal motion; beside a vertical one, on the outer side of the system (the
+    // left mass's arrow on its left), so that it does not run over the rest.
     let side = unit(sub(up, scale(dot(up, along), along)))
-        .or_else(|| unit(cross(context.plane.unwrap_or([0.0, 0.0, 1.0]), along)))
+        .or_else(|| {
+            let across = unit(cross(context.plane.unwrap_or([0.0, 0.0, 1.0]), along))?;
+            let points = &context.here.points;
+            let centre = scale(
+                1.0 / points.len().max(1) as f64,
+                points.iter().fold([0.0; 3], |a, p| add(a, *p)),
+            );
+            let outward = dot(across, sub(at, centre));
+            Some(if outward < 0.0 {
+                scale(-1.0, across)
+            } else {
+                across
+            })
+        })
         .unwrap_or([0.0, 1.0, 0.0]);
     let offset = scale(1.1 * context.block, side);
     let tail = add(origin, offset);
