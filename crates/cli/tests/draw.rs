@@ -111,3 +111,41 @@ fn the_committed_seed_figures_are_what_draw_makes() {
         );
     }
 }
+
+#[test]
+fn animate_writes_a_page_and_refuses_bad_input() {
+    let dir = std::env::temp_dir().join(format!("lagrange-animate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    let file = dir.join("pendulum.html");
+    let out = file.to_string_lossy().into_owned();
+    let o = lagrange(&[
+        "animate",
+        "examples/simple-pendulum.lag",
+        "--t-end",
+        "2",
+        "--trace",
+        "P",
+        "--out",
+        &out,
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let page = std::fs::read_to_string(&file).expect("written");
+    assert!(page.starts_with("<!DOCTYPE html>") && page.contains("id=\"trace-P\""));
+    let o = lagrange(&["animate", "examples/simple-pendulum.lag", "--out", "a.svg"]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = lagrange(&["animate", "examples/simple-pendulum.lag", "--fps", "0"]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = lagrange(&["animate", "examples/four-bar.lag", "--set", "nope=1"]);
+    assert_eq!(o.status.code(), Some(1));
+    let missing = dir.join("no/such/dir/a.html");
+    let o = lagrange(&[
+        "animate",
+        "examples/simple-pendulum.lag",
+        "--t-end",
+        "1",
+        "--out",
+        &missing.to_string_lossy(),
+    ]);
+    assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -60,12 +60,16 @@ pub(crate) enum Shape {
     Block { along: P3, size: f64 },
 }
 
-/// Builds the scene of `sampler`'s model at its configuration.
+/// Builds the scene of `sampler`'s model at its configuration; `size`, when given, is the
+/// system's extent that symbols scale with (an animation keeps its first frame's).
 ///
 /// # Errors
 /// A value the geometry needs is missing.
-pub(crate) fn scene(sampler: &Sampler<'_>) -> Result<(Scene, Option<P3>), DrawError> {
-    let context = look(sampler)?;
+pub(crate) fn scene(
+    sampler: &Sampler<'_>,
+    size: Option<f64>,
+) -> Result<(Scene, Option<P3>), DrawError> {
+    let context = look(sampler, size)?;
     let mut items = Vec::new();
     if context.plane.is_none() {
         axes(&context, &mut items);
@@ -105,7 +109,10 @@ fn axes(context: &Context<'_, '_>, items: &mut Vec<Item>) {
     }
 }
 
-fn look<'s, 'm>(sampler: &'s Sampler<'m>) -> Result<Context<'s, 'm>, DrawError> {
+fn look<'s, 'm>(
+    sampler: &'s Sampler<'m>,
+    given_size: Option<f64>,
+) -> Result<Context<'s, 'm>, DrawError> {
     let model = sampler.model;
     let here = sampler.here()?;
     let shaken = [sampler.shaken(SHAKE)?, sampler.shaken(-0.8 * SHAKE)?];
@@ -150,7 +157,7 @@ fn look<'s, 'm>(sampler: &'s Sampler<'m>) -> Result<Context<'s, 'm>, DrawError> 
         sliders: Vec::new(),
     };
     context.shapes = shapes(&context, &shaken)?;
-    context.size = context.size.max(rims(&context));
+    context.size = given_size.unwrap_or_else(|| context.size.max(rims(&context)));
     context.block = 0.12 * context.size;
     context.links = links(&context, &shaken);
     context.sliders = sliders(&context)?;
@@ -717,7 +724,9 @@ fn joints(context: &Context<'_, '_>, rods: &[(P3, P3)], centres: &[P3]) -> Vec<(
             continue;
         }
         let named = |i: usize| near(here.points[i], p);
-        let fixed = (0..here.points.len()).any(|i| named(i) && context.fixed[i]);
+        // Fixed when every named point there is (a cart passing over the origin is not).
+        let there: Vec<usize> = (0..here.points.len()).filter(|&i| named(i)).collect();
+        let fixed = !there.is_empty() && there.iter().all(|&i| context.fixed[i]);
         let slider = context.sliders.iter().any(|(i, _)| named(*i));
         let bob = model.particles().iter().any(|q| named(q.point.index())) && !slider;
         let released = model

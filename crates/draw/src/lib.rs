@@ -27,6 +27,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod animate;
 mod build;
 pub mod layout;
 mod loads;
@@ -37,6 +38,7 @@ mod scene;
 mod svg;
 mod view;
 
+pub use animate::{animation, AnimationOptions};
 pub use layout::Rect;
 pub use names::{symbol, text};
 pub use sample::Configuration;
@@ -87,7 +89,7 @@ pub struct Figure {
 /// when a parameter the geometry needs has no value.
 pub fn figure(model: &model::Model, at: Configuration) -> Result<Figure, DrawError> {
     let sampler = sample::Sampler::new(model, at)?;
-    let (scene, plane) = build::scene(&sampler)?;
+    let (scene, plane) = build::scene(&sampler, None)?;
     let view = view::fit(&scene, plane);
     let written = svg::write(&scene, &view);
     Ok(Figure {

@@ -200,7 +200,8 @@ fn angle(
         a: s.pivot,
         b: add(s.pivot, scale(1.3 * radius.max(0.6 * s.length), zero)),
     });
-    let steps = 2 + (24.0 * q.abs() / std::f64::consts::PI).ceil() as usize;
+    // A fixed number of points, so that the frames of an animation share their markup.
+    let steps = 24;
     let points = (0..=steps)
         .map(|j| {
             let turn = q * j as f64 / steps as f64;
@@ -293,12 +294,10 @@ fn displacement(
         a: origin,
         b: add(origin, scale(1.3, offset)),
     });
-    if travel >= 0.4 * context.block {
-        items.push(Item::Reference {
-            a: add(at, scale(0.5 * context.block, side)),
-            b: add(at, scale(1.3, offset)),
-        });
-    }
+    items.push(Item::Reference {
+        a: add(at, scale(0.5 * context.block, side)),
+        b: add(at, scale(1.3, offset)),
+    });
     items.push(Item::Arrow {
         kind: ArrowKind::Coordinate(name.to_owned()),
         from: tail,
@@ -364,7 +363,7 @@ fn frame_angle(
             b: scale(1.5 * radius, d),
         });
     }
-    let steps = 2 + (24.0 * q.abs() / std::f64::consts::PI).ceil() as usize;
+    let steps = 24;
     let points = (0..=steps)
         .map(|j| scale(radius, rotate(zero, n, q * j as f64 / steps as f64)))
         .collect();

@@ -12,7 +12,7 @@ use crate::sample::{add, norm, sub};
 use crate::scene::{ArcKind, ArrowKind, Item, Scene, P3};
 use crate::view::View;
 
-type Pt = (f64, f64);
+pub(crate) type Pt = (f64, f64);
 
 const FONT: f64 = 14.0;
 const INK: &str = "#222";
@@ -34,6 +34,20 @@ pub(crate) struct Written {
     pub svg: String,
     pub labels: Vec<(String, Rect)>,
     pub touching: Vec<String>,
+    /// The drawing and its labels without the `<svg>` root (for an animation's frames).
+    pub inner: String,
+    /// The page box around the drawing and its labels, margin included.
+    pub bounds: (Pt, Pt),
+}
+
+/// The style sheet of the figures.
+pub(crate) fn style() -> &'static str {
+    STYLE
+}
+
+/// A page coordinate as the SVG writes it.
+pub(crate) fn number(x: f64) -> String {
+    f(x)
 }
 
 /// The SVG of `scene` in `view`.
@@ -114,9 +128,11 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
         text
     );
     Written {
+        inner: format!("{}{}", w.body, text),
         svg,
         labels: boxes,
         touching,
+        bounds: (lo, hi),
     }
 }
 
@@ -443,7 +459,9 @@ impl Writer<'_> {
             return;
         }
         let (ux, uy) = (dx / len, dy / len);
-        let n = (len / 8.0).floor() as usize;
+        // Counted from the length to a hundredth of a pixel: equal lengths in two frames of an
+        // animation give equal counts despite rounding.
+        let n = ((len * 100.0).round() / 800.0).floor() as usize;
         let mut d = String::new();
         for k in 0..=n {
             let s = k as f64 * len / n.max(1) as f64;
@@ -588,13 +606,16 @@ impl Writer<'_> {
         self.line(at(0.55 * len, 0.0), b, &style, 1.0);
     }
 
+    /// An arrowhead at `tip` coming from `from` (pointing right when they coincide: always
+    /// written, so that the frames of an animation share their markup).
     fn head(&mut self, tip: Pt, from: Pt, colour: &str) {
         let (dx, dy) = (tip.0 - from.0, tip.1 - from.1);
         let len = (dx * dx + dy * dy).sqrt();
-        if len < 1e-9 {
-            return;
-        }
-        let (ux, uy) = (dx / len, dy / len);
+        let (ux, uy) = if len < 1e-9 {
+            (1.0, 0.0)
+        } else {
+            (dx / len, dy / len)
+        };
         let back = (tip.0 - 10.0 * ux, tip.1 - 10.0 * uy);
         let l = (back.0 - 4.0 * uy, back.1 + 4.0 * ux);
         let r = (back.0 + 4.0 * uy, back.1 - 4.0 * ux);
@@ -647,11 +668,8 @@ impl Writer<'_> {
                 1.0,
             );
             let n = page.len();
-            let span = (page[n - 1].0 - page[0].0).hypot(page[n - 1].1 - page[0].1);
-            if span > 6.0 {
-                let back = page[n.saturating_sub(3)];
-                self.head(page[n - 1], back, colour);
-            }
+            let back = page[n.saturating_sub(3)];
+            self.head(page[n - 1], back, colour);
         }
         let anchor = page.get(page.len() / 2).copied().unwrap_or((0.0, 0.0));
         self.label(&format!("{id}-{text}"), text, class, anchor);

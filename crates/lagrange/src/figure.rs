@@ -34,6 +34,65 @@ impl Analysis {
         Ok(draw::figure(model, at)?)
     }
 
+    /// The simulated motion as a self-contained HTML animation: one frame per `1/fps` from the
+    /// initial state to `t_end` (or the model's `simulate` end), the paths of the points named
+    /// in `traces` drawn.
+    ///
+    /// # Errors
+    /// As [`Analysis::simulate`] and [`Analysis::figure`]; [`Error::NotAvailable`] for a
+    /// frame rate that is not positive.
+    pub fn animation(
+        &self,
+        t_end: Option<f64>,
+        fps: f64,
+        traces: &[String],
+    ) -> Result<String, Error> {
+        let Some(source) = self.source() else {
+            return Err(Error::NotAvailable(
+                "a system built in code has no model to draw".to_owned(),
+            ));
+        };
+        if !(fps.is_finite() && fps > 0.0) {
+            return Err(Error::NotAvailable(format!(
+                "a frame rate must be a positive number, not {fps}"
+            )));
+        }
+        let options = crate::SimulationOptions {
+            t_end,
+            output_step: Some(1.0 / fps),
+            ..crate::SimulationOptions::default()
+        };
+        let run = self.simulate(&options)?;
+        let model = &source.model;
+        let column = |name: &str| run.columns.iter().position(|c| c == name);
+        let mut frames = Vec::with_capacity(run.rows.len());
+        for row in &run.rows {
+            let mut q: Vec<f64> = model
+                .coordinates()
+                .iter()
+                .map(|c| column(&c.name.name).map_or(0.0, |k| row[k]))
+                .collect();
+            self.apply_eliminations(model, &mut q)?;
+            frames.push(draw::Configuration {
+                time: row[0],
+                coordinates: q,
+            });
+        }
+        let title = source
+            .path
+            .as_ref()
+            .and_then(|p| p.file_stem())
+            .map_or_else(
+                || "lagrange".to_owned(),
+                |s| s.to_string_lossy().into_owned(),
+            );
+        let options = draw::AnimationOptions {
+            traces: traces.to_vec(),
+            title,
+        };
+        Ok(draw::animation(model, &frames, &options)?)
+    }
+
     /// Gives each coordinate a constraint eliminates its value in the others. Only gear and
     /// velocity constraints eliminate coordinates, so other models are not derived here.
     fn apply_eliminations(&self, model: &model::Model, q: &mut [f64]) -> Result<(), Error> {

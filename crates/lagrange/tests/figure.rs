@@ -78,3 +78,91 @@ fn a_system_built_in_code_has_no_figure() {
     let e = Analysis::from_system(system).figure(0.0);
     assert!(matches!(e, Err(lagrange::Error::NotAvailable(_))));
 }
+
+/// Frame `k` of an animation's page, rebuilt as its script does: the first frame's markup
+/// with frame `k`'s numbers put back, or the frame's own markup.
+fn frame(html: &str, k: usize) -> String {
+    let line = |name: &str| -> serde_json::Value {
+        let start = html.find(&format!("\nconst {name}=")).expect("the data") + name.len() + 8;
+        let end = start + html[start..].find(";\n").expect("the end of the data");
+        serde_json::from_str(&html[start..end]).expect("JSON")
+    };
+    let (template, frames) = (line("T"), line("F"));
+    let f = &frames[k];
+    if let Some(s) = f.as_str() {
+        return s.to_owned();
+    }
+    let pieces = template.as_array().expect("pieces");
+    let numbers = f.as_array().expect("numbers");
+    let mut out = String::new();
+    for (i, p) in pieces.iter().enumerate() {
+        out.push_str(p.as_str().expect("text"));
+        if let Some(x) = numbers.get(i) {
+            out.push_str(&x.to_string());
+        }
+    }
+    out
+}
+
+fn attribute(markup: &str, marker: &str, key: &str) -> f64 {
+    let at = markup.find(marker).expect("the element");
+    let tag = &markup[markup[..=at].rfind('<').expect("tag")..];
+    let tag = &tag[..tag.find('>').expect("closed")];
+    let from = tag.find(&format!(" {key}=\"")).expect("attribute") + key.len() + 3;
+    tag[from..from + tag[from..].find('"').expect("quoted")]
+        .trim()
+        .parse()
+        .expect("a number")
+}
+
+#[test]
+fn the_animation_moves_the_bob_as_the_simulation_does_and_stays_small() {
+    let cart = example("seed/7.1-cart-pendulum.lag");
+    let html = cart
+        .animation(Some(10.0), 30.0, &["B".to_owned()])
+        .expect("animated");
+    assert!(
+        html.len() < 2_000_000,
+        "{} bytes for 10 s at 30 fps",
+        html.len()
+    );
+    assert!(
+        html.contains("<script>") && !html.contains("src="),
+        "self-contained"
+    );
+    assert!(html.contains("id=\"trace-B\""));
+    let options = lagrange::SimulationOptions {
+        t_end: Some(10.0),
+        output_step: Some(1.0 / 30.0),
+        ..lagrange::SimulationOptions::default()
+    };
+    let run = cart.simulate(&options).expect("simulated");
+    assert_eq!(run.rows.len(), 301);
+    let root = &html[html.find("<svg ").expect("the picture")..];
+    let scale = attribute(root, "<svg ", "data-scale");
+    let origin: Vec<f64> = {
+        let at = root.find("data-origin=\"").expect("origin") + 13;
+        root[at..at + root[at..].find('"').expect("quoted")]
+            .split(' ')
+            .map(|x| x.parse().expect("number"))
+            .collect()
+    };
+    let mut seen = Vec::new();
+    for k in [0, 40, 150, 300] {
+        let markup = frame(&html, k);
+        let (x, theta) = (run.rows[k][1], run.rows[k][2]);
+        // B = (x + l sin θ, l cos θ) with l = 0.5; the page's up is −y (gravity is +y).
+        let (bx, by) = (x + 0.5 * theta.sin(), 0.5 * theta.cos());
+        let expected = (origin[0] + scale * bx, origin[1] + scale * by);
+        let drawn = (
+            attribute(&markup, "id=\"point-B\"", "cx"),
+            attribute(&markup, "id=\"point-B\"", "cy"),
+        );
+        assert!(
+            (drawn.0 - expected.0).hypot(drawn.1 - expected.1) <= 1.0,
+            "frame {k}: B at {drawn:?}, the simulation puts it at {expected:?}"
+        );
+        seen.push(drawn);
+    }
+    assert!(seen.windows(2).all(|w| w[0] != w[1]), "the frames differ");
+}

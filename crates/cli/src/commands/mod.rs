@@ -1,6 +1,7 @@
 //! The subcommands, one module each; what they share: loading a model with `--set` values.
 
 use lagrange::{cas, model};
+pub mod animate;
 mod check;
 pub mod draw;
 mod eom;
@@ -38,6 +39,7 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
         } => equilibria::run(&model, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
         Command::Draw(args) => draw::run(&args),
+        Command::Animate(args) => animate::run(&args),
         Command::Simplify {
             expr,
             format,
