@@ -606,13 +606,13 @@ impl Writer<'_> {
         self.line(at(0.55 * len, 0.0), b, &style, 1.0);
     }
 
-    /// An arrowhead at `tip` coming from `from` (pointing right when they coincide: always
-    /// written, so that the frames of an animation share their markup).
+    /// An arrowhead at `tip` coming from `from`; when they coincide (an angle at zero) it
+    /// shrinks to the tip but is still written, so that an animation's frames share markup.
     fn head(&mut self, tip: Pt, from: Pt, colour: &str) {
         let (dx, dy) = (tip.0 - from.0, tip.1 - from.1);
         let len = (dx * dx + dy * dy).sqrt();
         let (ux, uy) = if len < 1e-9 {
-            (1.0, 0.0)
+            (0.0, 0.0)
         } else {
             (dx / len, dy / len)
         };
