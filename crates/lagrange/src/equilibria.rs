@@ -6,6 +6,9 @@ use mechanics::equilibria::{
 };
 use mechanics::linearize::{linear_model, linearize_at, LinearModel, LinearizeError, Linearized};
 
+use report::equilibria as print;
+use serde_json::Value;
+
 use crate::assign::{AssignmentError, Range};
 use crate::{Analysis, Error};
 
@@ -36,15 +39,75 @@ pub struct Equilibria {
     pub inputs: Vec<String>,
 }
 
-/// One step of a parameter sweep.
+/// One step of a parameter sweep: the value, the equilibria there, the linearization about
+/// each.
+pub use report::equilibria::SweepRow as SweepStep;
+
+/// Equilibria and their stability along a parameter sweep.
 #[derive(Debug, Clone)]
-pub struct SweepStep {
-    /// The parameter's value.
-    pub value: f64,
-    /// The equilibria there.
-    pub set: EquilibriumSet,
-    /// The linearization about each.
-    pub linearized: Vec<Result<Linearized, LinearizeError>>,
+pub struct EquilibriumSweep {
+    /// The rest (or steady-motion) equations, the same at every step.
+    pub rest: RestEquations,
+    /// The parameter, input or steady rate that varies.
+    pub parameter: String,
+    /// One per value, in order.
+    pub steps: Vec<SweepStep>,
+}
+
+impl EquilibriumSweep {
+    /// The bifurcation table, as `lagrange equilibria --sweep` prints it.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        print::sweep_text(&self.rest, &self.parameter, &self.steps)
+    }
+
+    /// The sweep as JSON (docs/json.md).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        print::sweep_json(&self.rest, &self.parameter, &self.steps)
+    }
+
+    /// Draws the bifurcation diagram (equilibria against the parameter; stable filled) to an
+    /// `.svg` or `.png` file.
+    ///
+    /// # Errors
+    /// A [`report::PlotError`]: the file cannot be written, or its extension is neither.
+    pub fn plot(&self, path: &std::path::Path) -> Result<(), report::PlotError> {
+        let points = print::bifurcation_points(&self.steps);
+        report::plot_bifurcation(path, &self.parameter, &self.rest.coordinates, &points)
+    }
+}
+
+/// Initial deviations `(δq₀, δq̇₀)` about an equilibrium, for the free response in closed form.
+pub type Deviations<'a> = Option<(&'a [f64], &'a [f64])>;
+
+impl Equilibria {
+    /// The equilibria and their stability, as `lagrange equilibria` prints them.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        print::equilibria_text(&self.rest, &self.set, &self.linearized)
+    }
+
+    /// [`Equilibria::to_text`] as JSON (docs/json.md).
+    #[must_use]
+    pub fn to_json(&self) -> Value {
+        print::equilibria_json(&self.rest, &self.set, &self.linearized)
+    }
+
+    /// The linearized dynamics about every equilibrium (or only the `only`-th), with the free
+    /// response from `deviations` when given, as `lagrange linearize` prints them.
+    #[must_use]
+    pub fn linearized_text(&self, only: Option<usize>, deviations: Deviations<'_>) -> String {
+        let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
+        print::linearized_text_with_response(r, set, lin, inputs, only, deviations)
+    }
+
+    /// [`Equilibria::linearized_text`] as JSON (docs/json.md).
+    #[must_use]
+    pub fn linearized_json(&self, only: Option<usize>, deviations: Deviations<'_>) -> Value {
+        let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
+        print::linearized_json_with_response(r, set, lin, inputs, only, deviations)
+    }
 }
 
 /// What does not change along a sweep.
@@ -119,7 +182,7 @@ impl Analysis {
         search: &Search,
         range: &Range,
         steps: usize,
-    ) -> Result<(RestEquations, Vec<SweepStep>), Error> {
+    ) -> Result<EquilibriumSweep, Error> {
         let prepared = self.prepare_equilibria(search)?;
         if !prepared.known.contains(&range.name) {
             return Err(unknown(&range.name, &prepared.known));
@@ -134,10 +197,14 @@ impl Analysis {
             rows.push(SweepStep {
                 value,
                 set,
-                linearized,
+                lin: linearized,
             });
         }
-        Ok((prepared.rest, rows))
+        Ok(EquilibriumSweep {
+            rest: prepared.rest,
+            parameter: range.name.clone(),
+            steps: rows,
+        })
     }
 
     fn prepare_equilibria(&self, search: &Search) -> Result<Prepared, Error> {

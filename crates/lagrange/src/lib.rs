@@ -67,14 +67,16 @@ mod equilibria;
 mod error;
 mod figure;
 mod reactions;
+mod runs;
 mod simulate;
 mod solve;
 
 pub use analysis::{Analysis, Source};
 pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Range};
-pub use equilibria::{Equilibria, Search, SweepStep, DEFAULT_RANGE};
+pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors};
 pub use reactions::Reactions;
+pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
     direction, failure_time, grid, plan, run_kept, run_to_csv, samples, Crossing, Ending, Run,
     SimulationOptions, Streamed, SweepRun, Tally,

@@ -58,6 +58,41 @@ fn a_sweep_of_many_runs_derives_once() {
 }
 
 #[test]
+fn a_sweep_table_has_one_row_per_run_and_ranges_read_the_models_values() {
+    let analysis = Analysis::from_file(&example("double-pendulum.lag")).unwrap();
+    // `l1` is a parameter of the model: a range's ends may be expressions of its values.
+    let values = analysis.values().unwrap();
+    let l1 = values.iter().find(|(n, _)| n == "l1").unwrap().1;
+    let ranges = vec!["theta1=0..l1/10".to_owned()];
+    let request = lagrange::SweepRequest {
+        ranges: &ranges,
+        samples: None,
+        steps: 4,
+        seed: 1,
+    };
+    let mut planned = 0;
+    let table = analysis
+        .sweep_table(&options(0.5), &request, &mut |n| planned = n, &|| {})
+        .unwrap();
+    assert_eq!((planned, table.runs, table.failed), (5, 5, 0));
+    let lines: Vec<&str> = table.csv.lines().collect();
+    assert_eq!(lines.len(), 6, "{}", table.csv);
+    assert!(lines[0].starts_with("run,theta1,final_t,"), "{}", lines[0]);
+    let last_value: f64 = lines[5].split(',').nth(1).unwrap().parse().unwrap();
+    assert!((last_value - l1 / 10.0).abs() < 1e-15);
+    assert_eq!(analysis.derivations(), 1);
+    // Two ranges without samples cannot be a grid: an error, not a guess.
+    let two = vec!["theta1=0..1".to_owned(), "theta2=0..1".to_owned()];
+    let request = lagrange::SweepRequest {
+        ranges: &two,
+        ..request
+    };
+    assert!(analysis
+        .sweep_table(&options(0.5), &request, &mut |_| {}, &|| {})
+        .is_err());
+}
+
+#[test]
 fn a_simulation_derives_no_reaction_it_does_not_need() {
     // The four-bar asks for the reactions of its loop constraints, which are two-sided: the
     // run does not need them (deriving them takes far longer than the run).

@@ -129,6 +129,10 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
     }
     for angle in angles {
         let cos = angle.cos();
+        // Most rewrites do not pay: count first, build only the ones that do.
+        if rewritten_len(&terms, cos, angle.sin()) >= terms.len() {
+            continue;
+        }
         let sin_squared = angle.sin().powi(2);
         let mut rewritten = Vec::with_capacity(terms.len());
         for t in &terms {
@@ -176,6 +180,49 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
         }
     }
     terms
+}
+
+/// The number of terms of the sum after `cos² a = 1 − sin² a` (`cos`, `sin` of one angle),
+/// counted without building it: a term is keyed by its factors other than its coefficient and
+/// its powers of `cos a` and `sin a`, with those two powers; terms with one key are like terms.
+fn rewritten_len(terms: &[Expr], cos: Expr, sin: Expr) -> usize {
+    let mut sums: FxHashMap<(Vec<Expr>, i64, i64), Number> = FxHashMap::default();
+    let mut add = |key, c: Number| {
+        let sum = sums.entry(key).or_insert(Number::ZERO);
+        *sum = sum.add(&c);
+    };
+    for t in terms {
+        let (c, rest) = split_coefficient(*t);
+        let (mut p, mut s) = (0, 0);
+        let mut others = Vec::new();
+        for f in factors_of(rest) {
+            let (base, exp) = split_power(f);
+            match exp.as_number().and_then(Number::to_i64) {
+                Some(k) if base == cos && k > 0 => p = k,
+                Some(k) if base == sin && k > 0 => s = k,
+                _ => others.push(f),
+            }
+        }
+        if p < 2 {
+            add((others, p, s), c);
+            continue;
+        }
+        let (j, r) = (p / 2, p % 2);
+        let mut binomial = Number::ONE;
+        for i in 0..=j {
+            let signed = if i % 2 == 0 {
+                binomial.clone()
+            } else {
+                binomial.neg()
+            };
+            add((others.clone(), r, s + 2 * i), c.mul(&signed));
+            binomial = binomial
+                .mul(&Number::int(j - i))
+                .div(&Number::int(i + 1))
+                .unwrap_or(Number::ZERO);
+        }
+    }
+    sums.values().filter(|c| !c.is_zero()).count()
 }
 
 /// Folds pairs of terms that are an expanded `cos(a ± b)` or `sin(a ± b)`, until none is left.
@@ -298,37 +345,44 @@ fn fold_partner(
 }
 
 /// Collects terms that share their time-dependent factors: `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`.
+///
+/// Grouped by the list of time-dependent factors (canonically ordered, so equal parts give
+/// equal lists); a term alone in its group is kept as it is, without rebuilding it.
 fn collect_by_time_part(terms: Vec<Expr>) -> Vec<Expr> {
-    let mut groups: Vec<(Expr, Vec<Expr>)> = Vec::new();
-    let mut slot: FxHashMap<Expr, usize> = FxHashMap::default();
+    let mut groups: Vec<(Vec<Expr>, Vec<Expr>)> = Vec::new();
+    let mut slot: FxHashMap<Vec<Expr>, usize> = FxHashMap::default();
     for t in terms {
-        let (c, rest) = split_coefficient(t);
-        let (dynamic, parameters): (Vec<Expr>, Vec<Expr>) =
-            factors_of(rest).into_iter().partition(|f| has_time(*f));
-        let key = Expr::mul_all(dynamic);
-        let parameter_part = Expr::mul_all([Expr::number(c)].into_iter().chain(parameters));
-        if key.is_literal_one() {
-            groups.push((key, vec![t]));
+        let dynamic: Vec<Expr> = factors_of(split_coefficient(t).1)
+            .into_iter()
+            .filter(|f| has_time(*f))
+            .collect();
+        if dynamic.is_empty() {
+            groups.push((dynamic, vec![t]));
             continue;
         }
-        match slot.get(&key) {
-            Some(&k) => groups[k].1.push(parameter_part),
+        match slot.get(&dynamic) {
+            Some(&k) => groups[k].1.push(t),
             None => {
-                slot.insert(key, groups.len());
-                groups.push((key, vec![parameter_part]));
+                slot.insert(dynamic.clone(), groups.len());
+                groups.push((dynamic, vec![t]));
             }
         }
     }
     groups
         .into_iter()
-        .map(|(key, parts)| {
-            if key.is_literal_one() {
-                parts[0]
-            } else if parts.len() == 1 {
-                parts[0] * key
-            } else {
-                Expr::mul_all([regroup_sum(parts), key])
+        .map(|(dynamic, members)| {
+            if members.len() == 1 {
+                return members[0];
             }
+            let parts: Vec<Expr> = members
+                .iter()
+                .map(|t| {
+                    let (c, rest) = split_coefficient(*t);
+                    let parameters = factors_of(rest).into_iter().filter(|f| !has_time(*f));
+                    Expr::mul_all([Expr::number(c)].into_iter().chain(parameters))
+                })
+                .collect();
+            Expr::mul_all([regroup_sum(parts), Expr::mul_all(dynamic)])
         })
         .collect()
 }

@@ -1,11 +1,9 @@
 //! `lagrange equilibria MODEL` and `lagrange linearize MODEL`: all equilibria with their
 //! stability, the linearized dynamics about them, and parameter sweeps (bifurcation tables).
 
-use lagrange::report;
 use std::path::Path;
 
 use lagrange::{Analysis, Range, Search};
-use report::equilibria as print;
 
 use crate::args::{EomFormat, EquilibriumOptions};
 use crate::exit::{println, Exit, Failure};
@@ -38,28 +36,19 @@ pub fn run(
         )));
     }
     let text = match initial {
-        None if json => super::eom::json(&print::equilibria_json(
-            &found.rest,
-            &found.set,
-            &found.linearized,
-        )),
-        None => print::equilibria_text(&found.rest, &found.set, &found.linearized),
+        None if json => super::eom::json(&found.to_json()),
+        None => found.to_text(),
         Some(initial) => {
-            let lookup = super::lookup(&analysis);
+            let lookup = analysis.lookup();
             let deviations = (!initial.is_empty())
                 .then(|| lagrange::assign::deviations(initial, &found.rest.coordinates, &lookup))
                 .transpose()
                 .map_err(|e| Failure::input(format!("--initial {e}")))?;
-            let deviations = deviations
-                .as_ref()
-                .map(|(q, v)| (q.as_slice(), v.as_slice()));
-            let (r, set, lin, inputs) = (&found.rest, &found.set, &found.linearized, &found.inputs);
+            let deviations = deviations.as_ref().map(|(q, v)| (&q[..], &v[..]));
             if json {
-                super::eom::json(&print::linearized_json_with_response(
-                    r, set, lin, inputs, only, deviations,
-                ))
+                super::eom::json(&found.linearized_json(only, deviations))
             } else {
-                print::linearized_text_with_response(r, set, lin, inputs, only, deviations)
+                found.linearized_text(only, deviations)
             }
         }
     };
@@ -69,7 +58,7 @@ pub fn run(
 
 /// `--steady` and `--range` as a search.
 fn search(analysis: &Analysis, options: &EquilibriumOptions) -> Result<Search, Failure> {
-    let lookup = super::lookup(analysis);
+    let lookup = analysis.lookup();
     let mut search = Search::default();
     for item in &options.steady {
         let a = lagrange::parse_assignment(item)
@@ -94,29 +83,21 @@ fn run_sweep(
     options: &EquilibriumOptions,
     json: bool,
 ) -> Result<Exit, Failure> {
-    let range: Range = lagrange::parse_range(sweep, &super::lookup(analysis))
+    let range: Range = lagrange::parse_range(sweep, &analysis.lookup())
         .map_err(|e| Failure::input(format!("--sweep {e}")))?;
-    let (rest, steps) = analysis
+    let table = analysis
         .equilibrium_sweep(search, &range, options.steps)
         .map_err(|e| Failure::of(e, path).prefixed("--sweep"))?;
-    let rows: Vec<print::SweepRow> = steps
-        .into_iter()
-        .map(|s| print::SweepRow {
-            value: s.value,
-            set: s.set,
-            lin: s.linearized,
-        })
-        .collect();
     if let Some(plot) = &options.plot {
-        let points = print::bifurcation_points(&rows);
-        report::plot_bifurcation(plot, &range.name, &rest.coordinates, &points)
+        table
+            .plot(plot)
             .map_err(|e| Failure::new(Exit::Output, e))?;
         eprintln!("wrote {}", plot.display());
     }
     let text = if json {
-        super::eom::json(&print::sweep_json(&rest, &range.name, &rows))
+        super::eom::json(&table.to_json())
     } else {
-        print::sweep_text(&rest, &range.name, &rows)
+        table.to_text()
     };
     println(&text)?;
     Ok(Exit::Success)

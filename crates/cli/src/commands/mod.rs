@@ -1,6 +1,6 @@
 //! The subcommands, one module each; what they share: loading a model with `--set` values.
 
-use lagrange::{cas, model};
+use lagrange::model;
 pub mod animate;
 mod check;
 pub mod draw;
@@ -75,10 +75,4 @@ pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
 pub fn render_options() -> model::RenderOptions {
     use std::io::IsTerminal;
     model::RenderOptions::default().with_color(std::io::stderr().is_terminal())
-}
-
-/// `--set`'s values as a lookup for constant expressions in other flags (`--range x=0..2*l`).
-pub fn lookup(analysis: &Analysis) -> impl Fn(cas::Symbol) -> Option<f64> {
-    let values = analysis.values().unwrap_or_default();
-    move |s: cas::Symbol| values.iter().find(|(n, _)| n == s.name()).map(|(_, v)| *v)
 }

@@ -145,11 +145,8 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
     let mut simulation = analysis
         .simulation(&options)
         .map_err(|e| failure(e, args))?;
-    if let Some(c) = simulation.initial_correction() {
-        eprintln!(
-            "warning: the initial state does not satisfy the constraints; the run starts from the nearest state that does: {}",
-            c.describe(&simulation.columns())
-        );
+    if let Some(warning) = lagrange::correction_warning(&simulation) {
+        eprintln!("warning: {warning}");
     }
     // Every output file is created before the run, so a bad path fails before a long run.
     let mut writer: Box<dyn Write> = match &args.out {
@@ -183,22 +180,12 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
         bar.finish_and_clear();
     }
     drop(writer);
-    let (outcome, tally, elapsed) = (&run.outcome, &run.tally, run.wall_time);
-    eprintln!(
-        "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {error:.3e}",
-        method = simulation.method(),
-        t = outcome.t,
-        t_end = simulation.span().1,
-        steps = outcome.stats.steps,
-        rejected = outcome.stats.rejected,
-        evals = outcome.stats.evaluations,
-        wall = format_duration(elapsed),
-        error = tally.energy_error(),
-    );
+    let outcome = &run.outcome;
+    eprintln!("{}", run.summary_line(&simulation));
     if !args.record_when.is_empty() {
         eprintln!(
             "{}",
-            lagrange::csv::crossings_line(&args.record_when, &tally.crossings)
+            lagrange::csv::crossings_line(&args.record_when, &run.tally.crossings)
         );
     }
     write_extras(args, &simulation, &run, events_writer, summary_writer)?;
@@ -225,25 +212,19 @@ fn write_extras(
     events: Option<std::io::BufWriter<std::fs::File>>,
     summary: Option<std::io::BufWriter<std::fs::File>>,
 ) -> Result<(), Failure> {
-    if let Some(mut w) = events {
-        let columns = simulation.columns();
-        let text = lagrange::csv::events(
-            &columns[..columns.len() - 2],
-            &args.record_when,
-            &run.tally.crossings,
-        );
-        w.write_all(text.as_bytes())
-            .and_then(|()| w.flush())
-            .map_err(|e| output_error("the events", &e))?;
-    }
-    if let Some(mut w) = summary {
-        let model = args.model.display().to_string();
-        let json = run
-            .tally
-            .summary(&model, simulation, &run.outcome, run.wall_time);
-        writeln!(w, "{}", super::eom::json(&json))
-            .and_then(|()| w.flush())
-            .map_err(|e| output_error("the summary", &e))?;
+    let model = args.model.display().to_string();
+    let events_text = || run.events_csv(simulation, &args.record_when);
+    let summary_text = || super::eom::json(&run.summary_json(&model, simulation)) + "\n";
+    let texts: [(_, _, &dyn Fn() -> String); 2] = [
+        (events, "the events", &events_text),
+        (summary, "the summary", &summary_text),
+    ];
+    for (writer, what, text) in texts {
+        if let Some(mut w) = writer {
+            w.write_all(text().as_bytes())
+                .and_then(|()| w.flush())
+                .map_err(|e| output_error(what, &e))?;
+        }
     }
     Ok(())
 }
@@ -314,54 +295,47 @@ fn sweep(
             "--record-when, --events and --summary describe one run; leave them out of a --sweep",
         ));
     }
-    let lookup = super::lookup(analysis);
-    let ranges = args
-        .sweep
-        .iter()
-        .map(|s| lagrange::parse_range(s, &lookup))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| Failure::input(format!("--sweep {e}")))?;
-    let runs = lagrange::plan(&ranges, args.samples, args.steps, args.seed)
-        .map_err(|e| Failure::input(format!("--sweep: {e} (--samples N; a grid takes --steps)")))?;
-    let names: Vec<String> = ranges.iter().map(|r| r.name.clone()).collect();
     let progress = bar("{bar:40} {pos}/{len} runs, {elapsed} (eta {eta})");
-    progress.set_length(runs.len() as u64);
     let started = Instant::now();
-    let results = analysis
-        .sweep(options, &names, &runs, &|| progress.inc(1))
+    let request = lagrange::SweepRequest {
+        ranges: &args.sweep,
+        samples: args.samples,
+        steps: args.steps,
+        seed: args.seed,
+    };
+    let table = analysis
+        .sweep_table(
+            options,
+            &request,
+            &mut |n| progress.set_length(n as u64),
+            &|| progress.inc(1),
+        )
         .map_err(|e| failure(e, args).prefixed("--sweep"))?;
     progress.finish_and_clear();
-    let columns = analysis
-        .simulation(options)
-        .map_or_else(|_| Vec::new(), |s| s.columns());
     let mut writer: Box<dyn Write> = match &args.out {
         Some(path) => Box::new(create(path)?),
         None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
     };
-    let (text, failed) = lagrange::csv::sweep(&names, &columns, &runs, &results);
     writer
-        .write_all(text.as_bytes())
+        .write_all(table.csv.as_bytes())
         .and_then(|()| writer.flush())
         .map_err(|e| output_error("the CSV", &e))?;
     eprintln!(
-        "{} runs on {} threads in {:.2} s ({} derivation), {failed} failed",
-        runs.len(),
-        rayon_threads(),
+        "{} runs on {} threads in {:.2} s ({} derivation), {} failed",
+        table.runs,
+        std::thread::available_parallelism().map_or(1, usize::from),
         started.elapsed().as_secs_f64(),
-        analysis.derivations()
+        analysis.derivations(),
+        table.failed
     );
     if let Some(path) = &args.out {
         eprintln!("wrote {}", path.display());
     }
-    Ok(if failed > 0 {
+    Ok(if table.failed > 0 {
         Exit::RunFailed
     } else {
         Exit::Success
     })
-}
-
-fn rayon_threads() -> usize {
-    std::thread::available_parallelism().map_or(1, usize::from)
 }
 
 fn create(path: &Path) -> Result<std::io::BufWriter<std::fs::File>, Failure> {
@@ -376,16 +350,6 @@ fn bar(template: &str) -> ProgressBar {
         bar.set_style(style);
     }
     bar
-}
-
-fn format_duration(seconds: f64) -> String {
-    if seconds < 1e-3 {
-        format!("{:.1} µs", seconds * 1e6)
-    } else if seconds < 1.0 {
-        format!("{:.2} ms", seconds * 1e3)
-    } else {
-        format!("{seconds:.2} s")
-    }
 }
 
 fn stem(path: &Path) -> String {

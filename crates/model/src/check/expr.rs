@@ -111,88 +111,8 @@ impl ExprChecker<'_> {
                 Type::Scalar,
             ),
             ast::ExprKind::Name(ident) => self.name(ident),
-            ast::ExprKind::Rate(ident) => {
-                let entry = match self.scope.get(&ident.name) {
-                    Some(entry) => *entry,
-                    None => {
-                        self.diagnostics.push(self.scope.not_found(ident, None));
-                        return None;
-                    }
-                };
-                self.used.insert(ident.name.clone());
-                let id = match entry.target {
-                    Target::Coordinate(id) => id,
-                    Target::Poisoned => return None,
-                    _ => {
-                        self.diagnostics.push(
-                            Diagnostic::new(
-                                DiagnosticKind::RateOfNonCoordinate {
-                                    name: ident.name.clone(),
-                                    kind: entry.kind,
-                                },
-                                span,
-                            )
-                            .with_help("Only coordinates have rates; remove the `'`."),
-                        );
-                        return None;
-                    }
-                };
-                if !self.place.rates {
-                    self.diagnostics.push(
-                        Diagnostic::new(
-                            DiagnosticKind::RateNotAllowed { name: ident.name.clone(), place: self.place.what },
-                            span,
-                        )
-                        .with_help(
-                            "Positions, frames, potentials and holonomic constraints depend on coordinates, \
-                             not on their rates; rates belong in forces, dissipation and velocity constraints.",
-                        ),
-                    );
-                    return None;
-                }
-                if !self.level_ok(entry.level, ident) {
-                    return None;
-                }
-                typed(ExprKind::Rate(id), Type::Scalar)
-            }
-            ast::ExprKind::UnitVector { frame, axis } => {
-                let entry = self
-                    .scope
-                    .expect_kind(frame, NameKind::Frame, self.diagnostics)?;
-                let Target::Frame(id) = entry.target else {
-                    return None;
-                };
-                let Some(axis_value) = Axis::from_name(&axis.name) else {
-                    let mut diagnostic = Diagnostic::new(
-                        DiagnosticKind::UnknownAxis {
-                            frame: frame.name.clone(),
-                            axis: axis.name.clone(),
-                        },
-                        axis.span,
-                    );
-                    diagnostic = match suggest(&axis.name, ["x", "y", "z"]) {
-                        Some(best) => {
-                            diagnostic.with_help(format!("Did you mean `{}.{best}`?", frame.name))
-                        }
-                        None => diagnostic.with_help(format!(
-                            "A frame's unit vectors are `{0}.x`, `{0}.y` and `{0}.z`.",
-                            frame.name
-                        )),
-                    };
-                    self.diagnostics.push(diagnostic);
-                    return None;
-                };
-                if !self.level_ok(entry.level, frame) {
-                    return None;
-                }
-                typed(
-                    ExprKind::UnitVector {
-                        frame: id,
-                        axis: axis_value,
-                    },
-                    Type::Vector,
-                )
-            }
+            ast::ExprKind::Rate(ident) => self.rate(ident, span),
+            ast::ExprKind::UnitVector { frame, axis } => self.unit_vector(frame, axis, span),
             ast::ExprKind::Neg(operand) => {
                 let operand = self.check(operand)?;
                 let ty = operand.ty;
@@ -215,6 +135,102 @@ impl ExprChecker<'_> {
             }
             ast::ExprKind::Call { function, args } => self.call(function, args, span),
         }
+    }
+
+    /// A coordinate's rate `q'`: only coordinates have one, and only where rates are allowed.
+    fn rate(&mut self, ident: &ast::Ident, span: crate::span::Span) -> Option<Expr> {
+        let entry = match self.scope.get(&ident.name) {
+            Some(entry) => *entry,
+            None => {
+                self.diagnostics.push(self.scope.not_found(ident, None));
+                return None;
+            }
+        };
+        self.used.insert(ident.name.clone());
+        let id = match entry.target {
+            Target::Coordinate(id) => id,
+            Target::Poisoned => return None,
+            _ => {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        DiagnosticKind::RateOfNonCoordinate {
+                            name: ident.name.clone(),
+                            kind: entry.kind,
+                        },
+                        span,
+                    )
+                    .with_help("Only coordinates have rates; remove the `'`."),
+                );
+                return None;
+            }
+        };
+        if !self.place.rates {
+            self.diagnostics.push(
+                Diagnostic::new(
+                    DiagnosticKind::RateNotAllowed { name: ident.name.clone(), place: self.place.what },
+                    span,
+                )
+                .with_help(
+                    "Positions, frames, potentials and holonomic constraints depend on coordinates, \
+                     not on their rates; rates belong in forces, dissipation and velocity constraints.",
+                ),
+            );
+            return None;
+        }
+        if !self.level_ok(entry.level, ident) {
+            return None;
+        }
+        Some(Expr {
+            kind: ExprKind::Rate(id),
+            span,
+            ty: Type::Scalar,
+        })
+    }
+
+    /// A frame's unit vector `B.x`.
+    fn unit_vector(
+        &mut self,
+        frame: &ast::Ident,
+        axis: &ast::Ident,
+        span: crate::span::Span,
+    ) -> Option<Expr> {
+        let entry = self
+            .scope
+            .expect_kind(frame, NameKind::Frame, self.diagnostics)?;
+        let Target::Frame(id) = entry.target else {
+            return None;
+        };
+        let Some(axis_value) = Axis::from_name(&axis.name) else {
+            let mut diagnostic = Diagnostic::new(
+                DiagnosticKind::UnknownAxis {
+                    frame: frame.name.clone(),
+                    axis: axis.name.clone(),
+                },
+                axis.span,
+            );
+            diagnostic = match suggest(&axis.name, ["x", "y", "z"]) {
+                Some(best) => {
+                    diagnostic.with_help(format!("Did you mean `{}.{best}`?", frame.name))
+                }
+                None => diagnostic.with_help(format!(
+                    "A frame's unit vectors are `{0}.x`, `{0}.y` and `{0}.z`.",
+                    frame.name
+                )),
+            };
+            self.diagnostics.push(diagnostic);
+            return None;
+        };
+        if !self.level_ok(entry.level, frame) {
+            return None;
+        }
+        Some(Expr {
+            kind: ExprKind::UnitVector {
+                frame: id,
+                axis: axis_value,
+            },
+            span,
+            ty: Type::Vector,
+        })
     }
 
     fn level_ok(&mut self, level: Level, ident: &ast::Ident) -> bool {

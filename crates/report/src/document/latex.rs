@@ -6,19 +6,20 @@ use std::fmt::Write as _;
 use super::{Block, Cell, Document, Equation};
 
 impl Document {
-    /// A standalone LaTeX document (`article`, `amsmath`, `graphicx`) that compiles with
-    /// `pdflatex`.
+    /// A standalone LaTeX document (`article`, Latin Modern in T1, `amsmath`, `graphicx`,
+    /// `caption`) that compiles with `pdflatex`.
     #[must_use]
     pub fn to_latex(&self) -> String {
         let mut out = String::new();
         out.push_str(
             "\\documentclass[11pt]{article}\n\\usepackage[utf8]{inputenc}\n\\usepackage[T1]{fontenc}\n\
-             \\usepackage{amsmath,amssymb}\n\\usepackage{graphicx}\n\\usepackage[margin=2cm]{geometry}\n\
+             \\usepackage{lmodern}\n\\usepackage{amsmath,amssymb}\n\\usepackage{graphicx}\n\\usepackage{caption}\n\
+             \\usepackage[margin=2cm]{geometry}\n\
              \\allowdisplaybreaks\n\\setlength{\\parindent}{0pt}\n\\setlength{\\parskip}{0.6em}\n\n",
         );
         let _ = writeln!(
             out,
-            "\\title{{{}}}\n\\date{{}}\n\n\\begin{{document}}\n\\maketitle\n",
+            "\\title{{{}}}\n\\author{{}}\n\\date{{}}\n\n\\begin{{document}}\n\\maketitle\n",
             latex_text(&self.title)
         );
         for s in &self.sections {
@@ -64,7 +65,9 @@ impl Document {
                     Block::Figure { path, caption } => {
                         let _ = writeln!(
                             out,
-                            "\\begin{{figure}}[h]\n\\centering\n\\includegraphics[width=0.9\\textwidth]{{{path}}}\n\\caption*{{{}}}\n\\end{{figure}}\n",
+                            // Not a float: the figure stays in its section, where the text
+                            // refers to it.
+                            "\\begin{{center}}\n\\includegraphics[width=0.9\\textwidth]{{{path}}}\n\\captionof*{{figure}}{{{}}}\n\\end{{center}}\n",
                             latex_text(caption)
                         );
                     }
@@ -315,6 +318,11 @@ fn latex_text(s: &str) -> String {
             let _ = write!(out, "$\\{accent}{{{base}}}$");
             continue;
         }
+        // The same, precomposed (`ẋ`, `ŷ`, `Ṙ`): a rate or a unit vector, in mathematics.
+        if let Some((base, accent)) = accented_letter(ch) {
+            let _ = write!(out, "$\\{accent}{{{base}}}$");
+            continue;
+        }
         match ch {
             '\\' => out.push_str("\\textbackslash{}"),
             '&' | '%' | '$' | '#' | '_' | '{' | '}' => {
@@ -325,11 +333,15 @@ fn latex_text(s: &str) -> String {
             '^' => out.push_str("\\textasciicircum{}"),
             '—' => out.push_str("---"),
             '–' => out.push_str("--"),
+            '…' => out.push_str("\\ldots{}"),
             c if c.is_ascii() => out.push(c),
             c => match math_symbol(c) {
                 Some(m) => {
                     let _ = write!(out, "${m}$");
                 }
+                // Latin-1 and Latin Extended-A letters (`é`, `ñ`, `ł`): the T1 encoding has
+                // them, and `inputenc` reads them as they are.
+                None if ('\u{c0}'..='\u{17f}').contains(&c) && c.is_alphabetic() => out.push(c),
                 // Nothing else is written by the report; a stray character should not stop
                 // the document from compiling.
                 None => out.push('?'),
@@ -337,6 +349,101 @@ fn latex_text(s: &str) -> String {
         }
     }
     out
+}
+
+/// A precomposed Latin letter with a dot, two dots or a hat above: its base letter and the
+/// LaTeX accent (the table is Unicode's canonical decomposition of these letters).
+fn accented_letter(ch: char) -> Option<(char, &'static str)> {
+    const LETTERS: [(char, char, &str); 84] = [
+        ('Â', 'A', "hat"),
+        ('Ä', 'A', "ddot"),
+        ('Ê', 'E', "hat"),
+        ('Ë', 'E', "ddot"),
+        ('Î', 'I', "hat"),
+        ('Ï', 'I', "ddot"),
+        ('Ô', 'O', "hat"),
+        ('Ö', 'O', "ddot"),
+        ('Û', 'U', "hat"),
+        ('Ü', 'U', "ddot"),
+        ('â', 'a', "hat"),
+        ('ä', 'a', "ddot"),
+        ('ê', 'e', "hat"),
+        ('ë', 'e', "ddot"),
+        ('î', 'i', "hat"),
+        ('ï', 'i', "ddot"),
+        ('ô', 'o', "hat"),
+        ('ö', 'o', "ddot"),
+        ('û', 'u', "hat"),
+        ('ü', 'u', "ddot"),
+        ('ÿ', 'y', "ddot"),
+        ('Ĉ', 'C', "hat"),
+        ('ĉ', 'c', "hat"),
+        ('Ċ', 'C', "dot"),
+        ('ċ', 'c', "dot"),
+        ('Ė', 'E', "dot"),
+        ('ė', 'e', "dot"),
+        ('Ĝ', 'G', "hat"),
+        ('ĝ', 'g', "hat"),
+        ('Ġ', 'G', "dot"),
+        ('ġ', 'g', "dot"),
+        ('Ĥ', 'H', "hat"),
+        ('ĥ', 'h', "hat"),
+        ('İ', 'I', "dot"),
+        ('Ĵ', 'J', "hat"),
+        ('ĵ', 'j', "hat"),
+        ('Ŝ', 'S', "hat"),
+        ('ŝ', 's', "hat"),
+        ('Ŵ', 'W', "hat"),
+        ('ŵ', 'w', "hat"),
+        ('Ŷ', 'Y', "hat"),
+        ('ŷ', 'y', "hat"),
+        ('Ÿ', 'Y', "ddot"),
+        ('Ż', 'Z', "dot"),
+        ('ż', 'z', "dot"),
+        ('Ȧ', 'A', "dot"),
+        ('ȧ', 'a', "dot"),
+        ('Ȯ', 'O', "dot"),
+        ('ȯ', 'o', "dot"),
+        ('Ḃ', 'B', "dot"),
+        ('ḃ', 'b', "dot"),
+        ('Ḋ', 'D', "dot"),
+        ('ḋ', 'd', "dot"),
+        ('Ḟ', 'F', "dot"),
+        ('ḟ', 'f', "dot"),
+        ('Ḣ', 'H', "dot"),
+        ('ḣ', 'h', "dot"),
+        ('Ḧ', 'H', "ddot"),
+        ('ḧ', 'h', "ddot"),
+        ('Ṁ', 'M', "dot"),
+        ('ṁ', 'm', "dot"),
+        ('Ṅ', 'N', "dot"),
+        ('ṅ', 'n', "dot"),
+        ('Ṗ', 'P', "dot"),
+        ('ṗ', 'p', "dot"),
+        ('Ṙ', 'R', "dot"),
+        ('ṙ', 'r', "dot"),
+        ('Ṡ', 'S', "dot"),
+        ('ṡ', 's', "dot"),
+        ('Ṫ', 'T', "dot"),
+        ('ṫ', 't', "dot"),
+        ('Ẅ', 'W', "ddot"),
+        ('ẅ', 'w', "ddot"),
+        ('Ẇ', 'W', "dot"),
+        ('ẇ', 'w', "dot"),
+        ('Ẋ', 'X', "dot"),
+        ('ẋ', 'x', "dot"),
+        ('Ẍ', 'X', "ddot"),
+        ('ẍ', 'x', "ddot"),
+        ('Ẏ', 'Y', "dot"),
+        ('ẏ', 'y', "dot"),
+        ('Ẑ', 'Z', "hat"),
+        ('ẑ', 'z', "hat"),
+        ('ẗ', 't', "ddot"),
+    ];
+    LETTERS
+        .iter()
+        .find(|(c, _, _)| *c == ch)
+        .map(|(_, base, accent)| (*base, *accent))
 }
 
 /// The math-mode spelling of the non-ASCII characters prose may contain.
@@ -384,7 +491,7 @@ fn math_symbol(ch: char) -> Option<&'static str> {
         ('√', r"\surd"),
         ('∇', r"\nabla"),
     ];
-    const OTHER: [(char, &str); 14] = [
+    const OTHER: [(char, &str); 32] = [
         ('−', "-"),
         ('×', r"\times"),
         ('·', r"\cdot"),
@@ -399,6 +506,24 @@ fn math_symbol(ch: char) -> Option<&'static str> {
         ('±', r"\pm"),
         ('°', r"^\circ"),
         ('ᵀ', "^T"),
+        ('⁰', "^0"),
+        ('¹', "^1"),
+        ('⁵', "^5"),
+        ('⁶', "^6"),
+        ('⁷', "^7"),
+        ('⁸', "^8"),
+        ('⁹', "^9"),
+        ('⁻', "^-"),
+        ('₀', "_0"),
+        ('₁', "_1"),
+        ('₂', "_2"),
+        ('₃', "_3"),
+        ('₄', "_4"),
+        ('₅', "_5"),
+        ('₆', "_6"),
+        ('₇', "_7"),
+        ('₈', "_8"),
+        ('₉', "_9"),
     ];
     GREEK
         .iter()
