@@ -95,6 +95,12 @@ pub enum Command {
     /// Simulate a model: integrate the equations of motion, write the time history as CSV
     /// (`t`, coordinates, rates `q_d`, energy error, constraint drift) and a summary line.
     Simulate(crate::commands::simulate::SimulateArgs),
+    /// Draw the system at its initial state (or `--at` another) as an SVG figure: supports,
+    /// rods, disks, masses, springs, dampers, forces, gravity, and each coordinate marked.
+    Draw(crate::commands::draw::DrawArgs),
+    /// Animate the simulated motion as a self-contained HTML page (play/pause, a time slider,
+    /// the coordinates' values, traces of chosen points).
+    Animate(crate::commands::animate::AnimateArgs),
     /// Print the normal form of an expression (SymPy syntax; rates as `q_d`, `q_dd`).
     Simplify {
         /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)" (a leading minus needs no `--`).

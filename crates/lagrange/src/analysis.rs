@@ -465,7 +465,7 @@ impl Analysis {
         Ok(state)
     }
 
-    fn initial_value(&self, q: &str, rate: bool) -> Result<f64, Error> {
+    pub(crate) fn initial_value(&self, q: &str, rate: bool) -> Result<f64, Error> {
         if let Some((_, _, v)) = self.initial.iter().find(|(c, r, _)| c == q && *r == rate) {
             return Ok(*v);
         }

@@ -108,6 +108,9 @@ pub enum Error {
     /// Something was asked that the model does not have.
     #[error("{0}")]
     NotAvailable(String),
+    /// The figure could not be drawn.
+    #[error(transparent)]
+    Figure(#[from] draw::DrawError),
     /// lagrange disagrees with itself.
     #[error("internal inconsistency (a bug of lagrange): {0}")]
     Inconsistent(String),
@@ -175,7 +178,8 @@ impl Error {
             | Error::NoEndTime
             | Error::UnknownMethod { .. }
             | Error::MissingValue { .. }
-            | Error::NotAvailable(_) => ErrorKind::Input,
+            | Error::NotAvailable(_)
+            | Error::Figure(_) => ErrorKind::Input,
             Error::Located { kind, .. } => *kind,
             Error::Simulation(
                 S::InvalidSetting { .. }

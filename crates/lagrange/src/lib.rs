@@ -65,6 +65,7 @@ pub mod assign;
 pub mod csv;
 mod equilibria;
 mod error;
+mod figure;
 mod reactions;
 mod runs;
 mod simulate;
@@ -83,6 +84,7 @@ pub use simulate::{
 pub use solve::{Figures, Solution};
 
 pub use cas;
+pub use draw;
 pub use mechanics;
 pub use model;
 pub use numeric;

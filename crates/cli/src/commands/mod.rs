@@ -1,7 +1,9 @@
 //! The subcommands, one module each; what they share: loading a model with `--set` values.
 
 use lagrange::model;
+pub mod animate;
 mod check;
+pub mod draw;
 mod eom;
 mod equilibria;
 mod expression;
@@ -36,6 +38,8 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
             initial,
         } => equilibria::run(&model, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Draw(args) => draw::run(&args),
+        Command::Animate(args) => animate::run(&args),
         Command::Simplify {
             expr,
             format,

@@ -1,0 +1,66 @@
+//! `lagrange animate MODEL [--t-end T] [--fps N] [--trace P]… [--out FILE.html]`: the simulated
+//! motion as a self-contained HTML page that plays in a browser.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use crate::exit::{check_output, output_error, print, println, Exit, Failure};
+
+/// The flags of `lagrange animate`.
+#[derive(Args, Debug)]
+pub struct AnimateArgs {
+    /// The model file (`.lag`).
+    pub model: PathBuf,
+    /// End time (default: the model's `simulate to T`).
+    #[arg(long)]
+    pub t_end: Option<f64>,
+    /// Frames per second of simulated time.
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f64,
+    /// Draw the path of this point (repeatable).
+    #[arg(long, value_name = "POINT")]
+    pub trace: Vec<String>,
+    /// Override a parameter, an input or an initial value: `--set theta=1` (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// Write the animation to this `.html` file instead of printing it.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+/// Simulates, draws every frame, and prints or writes the page.
+pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
+    let path = args.model.as_path();
+    if let Some(out) = &args.out {
+        if !out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("html"))
+        {
+            return Err(Failure::input(format!(
+                "--out {}: an animation is written as HTML; give a file name ending in .html",
+                out.display()
+            )));
+        }
+        check_output(out, path)?;
+    }
+    if !(args.fps.is_finite() && args.fps > 0.0) {
+        return Err(Failure::input(format!(
+            "--fps {}: give a positive number",
+            args.fps
+        )));
+    }
+    let analysis = super::load(path, &args.set)?;
+    let html = analysis
+        .animation(args.t_end, args.fps, &args.trace)
+        .map_err(|e| Failure::of(e, path))?;
+    match &args.out {
+        None => print(&html)?,
+        Some(out) => {
+            std::fs::write(out, &html)
+                .map_err(|e| output_error(&format!("`{}`", out.display()), &e))?;
+            println(&format!("wrote {}", out.display()))?;
+        }
+    }
+    Ok(Exit::Success)
+}

@@ -1,0 +1,291 @@
+//! An animation: the figure at each frame of a motion, in one self-contained HTML file (inline
+//! SVG, a small inline script: play/pause, a time slider, the coordinates' values, the traces
+//! of chosen points). Every frame is drawn by the same pipeline as a still figure, in one view
+//! fitted to the whole motion. To stay small, a frame whose markup differs from the first one
+//! only in its numbers is stored as those numbers alone (one decimal: a tenth of a pixel); the
+//! script puts them back into the first frame's markup.
+
+use std::fmt::Write;
+
+use crate::sample::{Configuration, Sampler};
+use crate::scene::{Item, Scene, P3};
+use crate::svg::{self, Pt};
+use crate::{build, view, DrawError};
+
+/// What to animate besides the motion itself.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AnimationOptions {
+    /// Names of points whose paths are drawn.
+    pub traces: Vec<String>,
+    /// The page title.
+    pub title: String,
+}
+
+/// The animation of `model` through `frames` (in time order), as HTML text.
+///
+/// # Errors
+/// As [`crate::figure`], for any frame.
+pub fn animation(
+    model: &model::Model,
+    frames: &[Configuration],
+    options: &AnimationOptions,
+) -> Result<String, DrawError> {
+    let mut scenes = Vec::with_capacity(frames.len());
+    let mut plane = None;
+    let mut size = None;
+    for (k, at) in frames.iter().enumerate() {
+        let sampler = Sampler::new(model, at.clone())?;
+        // Symbols keep the first frame's sizes: a block does not breathe as the system moves.
+        let (scene, p) = build::scene(&sampler, size)?;
+        if k == 0 {
+            plane = p;
+            size = Some(scene.size);
+        }
+        scenes.push(scene);
+    }
+    let all = Scene {
+        items: scenes
+            .iter()
+            .flat_map(|s| s.items.iter().cloned())
+            .collect(),
+        size: scenes.iter().map(|s| s.size).fold(0.0, f64::max),
+        unmarked: Vec::new(),
+    };
+    let view = view::fit(&all, plane);
+    let written: Vec<svg::Written> = scenes.iter().map(|s| svg::write(s, &view)).collect();
+    let mut lo = (f64::INFINITY, f64::INFINITY);
+    let mut hi = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for w in &written {
+        lo = (lo.0.min(w.bounds.0 .0), lo.1.min(w.bounds.0 .1));
+        hi = (hi.0.max(w.bounds.1 .0), hi.1.max(w.bounds.1 .1));
+    }
+    if !lo.0.is_finite() {
+        (lo, hi) = ((0.0, 0.0), (100.0, 100.0));
+    }
+    let traces: Vec<(String, Vec<Pt>)> = options
+        .traces
+        .iter()
+        .map(|name| (name.clone(), trace(&scenes, name, &view)))
+        .collect();
+    Ok(html(
+        model,
+        frames,
+        &written,
+        &traces,
+        (lo, hi),
+        &view,
+        options,
+    ))
+}
+
+/// Where point `name` is drawn in each scene (frames where it is not drawn are skipped).
+fn trace(scenes: &[Scene], name: &str, view: &view::View) -> Vec<Pt> {
+    scenes
+        .iter()
+        .filter_map(|s| {
+            s.items.iter().find_map(|i| match i {
+                Item::Particle { name: n, at } | Item::Point { name: n, at } if n == name => {
+                    Some(*at)
+                }
+                Item::Block {
+                    name: n, centre, ..
+                } if n == name => Some(*centre),
+                _ => None,
+            })
+        })
+        .map(|p: P3| view.page(p))
+        .collect()
+}
+
+/// A frame's markup split into the text between numbers inside tags, and those numbers.
+fn split(markup: &str) -> (Vec<&str>, Vec<f64>) {
+    let bytes = markup.as_bytes();
+    let mut pieces = Vec::new();
+    let mut numbers = Vec::new();
+    let (mut start, mut i, mut in_tag) = (0, 0, false);
+    while i < bytes.len() {
+        let c = bytes[i];
+        if c == b'<' {
+            in_tag = true;
+        } else if c == b'>' {
+            in_tag = false;
+        }
+        let starts_number = in_tag
+            && (c.is_ascii_digit()
+                || (c == b'-' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit)))
+            && i > 0
+            && matches!(bytes[i - 1], b'"' | b' ' | b'L' | b'M');
+        if starts_number {
+            let mut j = i + 1;
+            while j < bytes.len() && (bytes[j].is_ascii_digit() || bytes[j] == b'.') {
+                j += 1;
+            }
+            if let Ok(x) = markup[i..j].parse::<f64>() {
+                pieces.push(&markup[start..i]);
+                numbers.push(x);
+                start = j;
+            }
+            i = j;
+            continue;
+        }
+        i += 1;
+    }
+    pieces.push(&markup[start..]);
+    (pieces, numbers)
+}
+
+fn js_string(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '<' => out.push_str("\\u003c"),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
+fn tenth(x: f64) -> String {
+    let s = format!("{x:.1}");
+    let s = s.strip_suffix(".0").unwrap_or(&s).to_owned();
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s
+    }
+}
+
+fn html(
+    model: &model::Model,
+    frames: &[Configuration],
+    written: &[svg::Written],
+    traces: &[(String, Vec<Pt>)],
+    (lo, hi): (Pt, Pt),
+    view: &view::View,
+    options: &AnimationOptions,
+) -> String {
+    let (template, _) = written.first().map(|w| split(&w.inner)).unwrap_or_default();
+    let mut data = String::from("[");
+    for (k, w) in written.iter().enumerate() {
+        let (pieces, numbers) = split(&w.inner);
+        if k > 0 {
+            data.push(',');
+        }
+        if pieces == template {
+            data.push('[');
+            let list: Vec<String> = numbers.iter().map(|x| tenth(*x)).collect();
+            data.push_str(&list.join(","));
+            data.push(']');
+        } else {
+            data.push_str(&js_string(&w.inner));
+        }
+    }
+    data.push(']');
+    let pieces: Vec<String> = template.iter().map(|p| js_string(p)).collect();
+    let template = format!("[{}]", pieces.join(","));
+    let names: Vec<String> = model
+        .coordinates()
+        .iter()
+        .map(|c| js_string(&crate::names::symbol(&c.name.name)))
+        .collect();
+    let mut values = String::from("[");
+    for (k, f) in frames.iter().enumerate() {
+        if k > 0 {
+            values.push(',');
+        }
+        let row: Vec<String> = std::iter::once(f.time)
+            .chain(f.coordinates.iter().copied())
+            .map(|x| format!("{x:.4}"))
+            .collect();
+        let _ = write!(values, "[{}]", row.join(","));
+    }
+    values.push(']');
+    let mut paths = String::new();
+    for (name, points) in traces {
+        let list: Vec<String> = points
+            .iter()
+            .map(|p| format!("{} {}", svg::number(p.0), svg::number(p.1)))
+            .collect();
+        let _ = writeln!(
+            paths,
+            r##"<polyline id="trace-{name}" points="{}" fill="none" stroke="#9aa7b8" stroke-width="1.2" stroke-dasharray="3 3"/>"##,
+            list.join(" ")
+        );
+    }
+    let (w, h) = (hi.0 - lo.0, hi.1 - lo.1);
+    format!(
+        r#"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{title}</title>
+<style>body{{font-family:'DejaVu Sans',Arial,sans-serif;margin:1em}}#values{{font-family:monospace;margin-top:.5em}}input[type=range]{{width:{slider}px}}</style>
+</head><body>
+<svg xmlns="http://www.w3.org/2000/svg" viewBox="{x} {y} {w} {h}" width="{w}" height="{h}" data-scale="{scale}" data-origin="{ox} {oy}" data-u="{u0} {u1} {u2}" data-v="{v0} {v1} {v2}">
+<style>{style}</style>
+<rect x="{x}" y="{y}" width="{w}" height="{h}" fill="white"/>
+{paths}<g id="frame"></g>
+</svg>
+<div><button id="play">pause</button> <input id="time" type="range" min="0" max="{last}" value="0" step="1"></div>
+<div id="values"></div>
+<script>
+const T={template};
+const F={data};
+const Q={values};
+const N=[{names}];
+const g=document.getElementById("frame"),s=document.getElementById("time"),b=document.getElementById("play"),v=document.getElementById("values");
+function markup(k){{const f=F[k];if(typeof f==="string")return f;let o="";for(let i=0;i<T.length;i++){{o+=T[i];if(i<f.length)o+=f[i];}}return o;}}
+function show(k){{g.innerHTML=markup(k);s.value=k;const q=Q[k];let t="t = "+q[0].toFixed(3)+" s";for(let i=0;i<N.length;i++)t+="   "+N[i]+" = "+q[i+1].toFixed(4);v.textContent=t;}}
+let k=0,playing=true,start=null;
+function tick(now){{if(playing){{if(start===null)start=now-1000*(Q[k][0]-Q[0][0]);const t=Q[0][0]+(now-start)/1000;while(k<Q.length-1&&Q[k+1][0]<=t)k++;if(k>=Q.length-1){{k=0;start=null;}}show(k);}}requestAnimationFrame(tick);}}
+b.onclick=()=>{{playing=!playing;start=null;b.textContent=playing?"pause":"play";}};
+s.oninput=()=>{{playing=false;b.textContent="play";k=Number(s.value);show(k);}};
+show(0);requestAnimationFrame(tick);
+</script>
+</body></html>
+"#,
+        title = options.title.replace('<', "&lt;"),
+        slider = w.max(200.0).round(),
+        x = svg::number(lo.0),
+        y = svg::number(lo.1),
+        w = svg::number(w),
+        h = svg::number(h),
+        style = svg::style(),
+        last = frames.len().saturating_sub(1),
+        scale = view.scale,
+        ox = view.origin.0,
+        oy = view.origin.1,
+        u0 = view.u[0],
+        u1 = view.u[1],
+        u2 = view.u[2],
+        v0 = view.v[0],
+        v1 = view.v[1],
+        v2 = view.v[2],
+        names = names.join(","),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_inside_tags_are_split_out_and_text_is_kept() {
+        let (pieces, numbers) =
+            split(r#"<line x1="1.25" y1="-3.50"/><text x="2.00">P1 0.50</text>"#);
+        assert_eq!(numbers, vec![1.25, -3.5, 2.0]);
+        let mut back = String::new();
+        for (i, p) in pieces.iter().enumerate() {
+            back.push_str(p);
+            if let Some(x) = numbers.get(i) {
+                back.push_str(&format!("{x:.2}"));
+            }
+        }
+        assert_eq!(
+            back,
+            r#"<line x1="1.25" y1="-3.50"/><text x="2.00">P1 0.50</text>"#
+        );
+    }
+}

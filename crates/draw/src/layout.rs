@@ -1,0 +1,207 @@
+//! Placing labels: greedily, in order of importance, each at the first of a fixed list of
+//! candidate positions around its anchor (nearest first) whose box meets no label placed
+//! before it and no part of the drawing; when every candidate touches the drawing, the one
+//! touching least. Labels never overlap each other: past the candidates, a label goes to a
+//! free row below the drawing.
+
+/// A rectangle on the page: left, top, width, height (pixels).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    /// Left.
+    pub x: f64,
+    /// Top.
+    pub y: f64,
+    /// Width.
+    pub w: f64,
+    /// Height.
+    pub h: f64,
+}
+
+impl Rect {
+    /// Whether the two rectangles share interior points.
+    #[must_use]
+    pub fn overlaps(&self, other: &Rect) -> bool {
+        self.x < other.x + other.w
+            && other.x < self.x + self.w
+            && self.y < other.y + other.h
+            && other.y < self.y + self.h
+    }
+
+    fn grown(&self, by: f64) -> Rect {
+        Rect {
+            x: self.x - by,
+            y: self.y - by,
+            w: self.w + 2.0 * by,
+            h: self.h + 2.0 * by,
+        }
+    }
+
+    fn contains(&self, (px, py): (f64, f64)) -> bool {
+        px >= self.x && px <= self.x + self.w && py >= self.y && py <= self.y + self.h
+    }
+}
+
+/// Something drawn that labels should keep clear of.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Obstacle {
+    /// A stroke from one point to another, with its half width.
+    Segment((f64, f64), (f64, f64), f64),
+    /// A filled disk: centre and radius.
+    Circle((f64, f64), f64),
+}
+
+impl Obstacle {
+    /// Whether the obstacle touches `r`.
+    #[must_use]
+    pub fn meets(&self, r: &Rect) -> bool {
+        match *self {
+            Obstacle::Circle((cx, cy), radius) => {
+                let dx = cx - cx.clamp(r.x, r.x + r.w);
+                let dy = cy - cy.clamp(r.y, r.y + r.h);
+                dx * dx + dy * dy < radius * radius
+            }
+            Obstacle::Segment(a, b, half) => segment_meets(a, b, &r.grown(half)),
+        }
+    }
+}
+
+/// Whether segment `a`–`b` meets rectangle `r` (Liang–Barsky clipping).
+fn segment_meets(a: (f64, f64), b: (f64, f64), r: &Rect) -> bool {
+    if r.contains(a) || r.contains(b) {
+        return true;
+    }
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-dx, a.0 - r.x),
+        (dx, r.x + r.w - a.0),
+        (-dy, a.1 - r.y),
+        (dy, r.y + r.h - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    t0 <= t1
+}
+
+/// A label to place: its text's size and the point it belongs to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Request {
+    /// Width and height of its box.
+    pub size: (f64, f64),
+    /// The point it labels.
+    pub anchor: (f64, f64),
+}
+
+/// Places every request; returns one box per request, in order.
+#[must_use]
+pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
+    let mut placed: Vec<Rect> = Vec::with_capacity(requests.len());
+    let bottom = obstacles
+        .iter()
+        .map(|o| match *o {
+            Obstacle::Segment(a, b, h) => a.1.max(b.1) + h,
+            Obstacle::Circle(c, r) => c.1 + r,
+        })
+        .fold(0.0, f64::max);
+    for request in requests {
+        let best = candidates(request)
+            .filter(|r| !placed.iter().any(|p| p.overlaps(r)))
+            .map(|r| (obstacles.iter().filter(|o| o.meets(&r)).count(), r))
+            .min_by_key(|(hits, _)| *hits);
+        let rect = match best {
+            Some((_, r)) => r,
+            None => free_row(request, &placed, bottom),
+        };
+        placed.push(rect);
+    }
+    placed
+}
+
+/// Candidate boxes around the anchor: rings of growing distance, 16 directions each, the
+/// upper right first (where textbooks put a point's name). The first without any obstacle
+/// wins, so the nearest clear place is taken.
+fn candidates(request: &Request) -> impl Iterator<Item = Rect> + '_ {
+    const RINGS: [f64; 9] = [6.0, 12.0, 20.0, 30.0, 44.0, 62.0, 86.0, 116.0, 150.0];
+    let (w, h) = request.size;
+    let (ax, ay) = request.anchor;
+    RINGS.iter().flat_map(move |&d| {
+        (0..16).map(move |k| {
+            let angle = std::f64::consts::FRAC_PI_4 - k as f64 * std::f64::consts::PI / 8.0;
+            let (s, c) = angle.sin_cos();
+            // The box's nearest edge point lies on the ray at distance d.
+            let cx = ax + c * (d + 0.5 * w * c.abs());
+            let cy = ay - s * (d + 0.5 * h * s.abs());
+            Rect {
+                x: cx - 0.5 * w,
+                y: cy - 0.5 * h,
+                w,
+                h,
+            }
+        })
+    })
+}
+
+/// A place below the drawing that no label takes yet.
+fn free_row(request: &Request, placed: &[Rect], bottom: f64) -> Rect {
+    let (w, h) = request.size;
+    let mut y = bottom + 8.0;
+    loop {
+        let r = Rect {
+            x: request.anchor.0 - 0.5 * w,
+            y,
+            w,
+            h,
+        };
+        if !placed.iter().any(|p| p.overlaps(&r)) {
+            return r;
+        }
+        y += h + 2.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_avoid_each_other_and_the_drawing() {
+        let line = Obstacle::Segment((0.0, 50.0), (200.0, 50.0), 2.0);
+        let requests: Vec<Request> = (0..12)
+            .map(|_| Request {
+                size: (20.0, 14.0),
+                anchor: (100.0, 50.0),
+            })
+            .collect();
+        let rects = place(&requests, &[line]);
+        for (i, a) in rects.iter().enumerate() {
+            assert!(!line.meets(a), "label {i} on the line: {a:?}");
+            for b in &rects[i + 1..] {
+                assert!(!a.overlaps(b), "{a:?} and {b:?} overlap");
+            }
+        }
+    }
+
+    #[test]
+    fn a_segment_through_a_box_meets_it() {
+        let r = Rect {
+            x: 0.0,
+            y: 0.0,
+            w: 10.0,
+            h: 10.0,
+        };
+        assert!(segment_meets((-5.0, 5.0), (15.0, 5.0), &r));
+        assert!(!segment_meets((-5.0, 15.0), (15.0, 15.0), &r));
+        assert!(!segment_meets((-5.0, 5.0), (-1.0, 20.0), &r));
+    }
+}
