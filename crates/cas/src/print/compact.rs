@@ -227,20 +227,8 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
             let rest = Expr::mul_all(rest);
             // cos^p = cos^r (1 − sin²)^j with p = 2j + r.
             let (j, r) = (power / 2, power % 2);
-            // Exact binomials: C(j, i) outgrows i64 from j = 67 on, and a wrapped coefficient
-            // printed a `cos 150x` potential as 6e45 where its value is 0.47.
-            let mut binomial = Number::ONE;
-            for i in 0..=j {
-                let signed = if i % 2 == 0 {
-                    binomial.clone()
-                } else {
-                    binomial.neg()
-                };
+            for (i, signed) in (0..).zip(alternating_binomials(j)) {
                 rewritten.push(Expr::number(signed) * rest * cos.powi(r) * sin_squared.powi(i));
-                binomial = binomial
-                    .mul(&Number::int(j - i))
-                    .div(&Number::int(i + 1))
-                    .unwrap_or(Number::ZERO);
             }
         }
         let sum = Expr::add_all(rewritten);
@@ -254,6 +242,26 @@ fn prefer_sine_squares(mut terms: Vec<Expr>) -> Vec<Expr> {
         }
     }
     terms
+}
+
+/// `(−1)^i C(j, i)` for `i = 0..=j`: the coefficients of `(1 − sin²)^j`. Exact: C(j, i)
+/// outgrows i64 from j = 67 on, and a wrapped coefficient once printed a `cos 150x` potential
+/// as 6e45 where its value is 0.47.
+fn alternating_binomials(j: i64) -> Vec<Number> {
+    let mut binomial = Number::ONE;
+    let mut out = Vec::new();
+    for i in 0..=j {
+        out.push(if i % 2 == 0 {
+            binomial.clone()
+        } else {
+            binomial.neg()
+        });
+        binomial = binomial
+            .mul(&Number::int(j - i))
+            .div(&Number::int(i + 1))
+            .unwrap_or(Number::ZERO);
+    }
+    out
 }
 
 /// The number of terms of the sum after `cos² a = 1 − sin² a` (`cos`, `sin` of one angle),
@@ -282,18 +290,8 @@ fn rewritten_len(terms: &[Expr], cos: Expr, sin: Expr) -> usize {
             continue;
         }
         let (j, r) = (p / 2, p % 2);
-        let mut binomial = Number::ONE;
-        for i in 0..=j {
-            let signed = if i % 2 == 0 {
-                binomial.clone()
-            } else {
-                binomial.neg()
-            };
+        for (i, signed) in (0..).zip(alternating_binomials(j)) {
             add((others.clone(), r, s + 2 * i), c.mul(&signed));
-            binomial = binomial
-                .mul(&Number::int(j - i))
-                .div(&Number::int(i + 1))
-                .unwrap_or(Number::ZERO);
         }
     }
     sums.values().filter(|c| !c.is_zero()).count()
