@@ -767,6 +767,9 @@ impl Expr {
             if let (Func::Abs, Node::Number(n)) = (f, a.node()) {
                 return Expr::number(n.abs());
             }
+            if let Some(e) = trig_of_inverse(f, *a) {
+                return e;
+            }
         }
         intern_compound(Compound::Func(f), &args)
     }
@@ -1016,9 +1019,87 @@ impl From<Number> for Expr {
     }
 }
 
+/// `sin`, `cos` or `tan` of an inverse trigonometric function, as an algebraic expression: the
+/// identities hold on the inverse's whole domain (`asin`, `acos` on [−1, 1], where
+/// `cos(asin u) = √(1 − u²)` ≥ 0; `atan` everywhere; `atan2(y, x)` away from the origin),
+/// so equilibria in closed form read `√(1 − u²)`, not `cos(asin(u))`.
+fn trig_of_inverse(f: Func, arg: Expr) -> Option<Expr> {
+    let Node::Func(inverse, args) = arg.node() else {
+        return None;
+    };
+    let one = Expr::one();
+    let e = match (f, *inverse, &args[..]) {
+        (Func::Sin, Func::Asin, [u])
+        | (Func::Cos, Func::Acos, [u])
+        | (Func::Tan, Func::Atan, [u]) => *u,
+        (Func::Cos, Func::Asin, [u]) | (Func::Sin, Func::Acos, [u]) => (one - u.powi(2)).sqrt(),
+        (Func::Tan, Func::Asin, [u]) => *u / (one - u.powi(2)).sqrt(),
+        (Func::Tan, Func::Acos, [u]) => (one - u.powi(2)).sqrt() / *u,
+        (Func::Sin, Func::Atan, [u]) => *u / (one + u.powi(2)).sqrt(),
+        (Func::Cos, Func::Atan, [u]) => one / (one + u.powi(2)).sqrt(),
+        (Func::Sin, Func::Atan2, [y, x]) => *y / (x.powi(2) + y.powi(2)).sqrt(),
+        (Func::Cos, Func::Atan2, [y, x]) => *x / (x.powi(2) + y.powi(2)).sqrt(),
+        (Func::Tan, Func::Atan2, [y, x]) => *y / *x,
+        _ => return None,
+    };
+    Some(e)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn trigonometry_of_an_inverse_is_algebraic_and_keeps_its_value() {
+        let (u, y, x) = (Expr::symbol("u"), Expr::symbol("y"), Expr::symbol("x"));
+        let one = Expr::one();
+        assert_eq!(u.asin().sin(), u);
+        assert_eq!(u.acos().cos(), u);
+        assert_eq!(u.atan().tan(), u);
+        assert_eq!(u.asin().cos(), (one - u.powi(2)).sqrt());
+        assert_eq!(u.atan().cos(), one / (one + u.powi(2)).sqrt());
+        let cases = [
+            u.asin().cos(),
+            u.asin().tan(),
+            u.acos().sin(),
+            u.acos().tan(),
+            u.atan().sin(),
+            u.atan().cos(),
+            Expr::atan2(y, x).sin(),
+            Expr::atan2(y, x).cos(),
+            Expr::atan2(y, x).tan(),
+        ];
+        let expected = |k: usize, u: f64, y: f64, x: f64| match k {
+            0 => u.asin().cos(),
+            1 => u.asin().tan(),
+            2 => u.acos().sin(),
+            3 => u.acos().tan(),
+            4 => u.atan().sin(),
+            5 => u.atan().cos(),
+            6 => y.atan2(x).sin(),
+            7 => y.atan2(x).cos(),
+            _ => y.atan2(x).tan(),
+        };
+        // On the whole domain: both signs of u, every quadrant of (x, y).
+        for (uv, yv, xv) in [(0.3, 1.2, -0.7), (-0.8, -0.4, -2.0), (0.95, -1.1, 0.6)] {
+            for (k, e) in cases.iter().enumerate() {
+                let got = e
+                    .eval(&|s: Symbol| {
+                        Some(match s.name() {
+                            "u" => uv,
+                            "y" => yv,
+                            _ => xv,
+                        })
+                    })
+                    .unwrap();
+                let want = expected(k, uv, yv, xv);
+                assert!(
+                    (got - want).abs() < 1e-12 * want.abs().max(1.0),
+                    "{k}: {got} vs {want}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn hash_consing_shares_equal_nodes() {
