@@ -81,7 +81,7 @@ impl Document {
 
 /// Glyphs per display line (see [`visible_width`]) before a long right-hand side is broken:
 /// the text width of the LaTeX document (2 cm margins) in 10 pt mathematics, with room to spare.
-pub(super) const LATEX_LINE: usize = 75;
+pub(super) const LATEX_LINE: usize = 72;
 
 /// The body of an `aligned`/`align*` display: `lhs &= rhs`, a long `rhs` broken before a
 /// `+`/`-` onto continuation lines `&\quad + …`. Top-level signs are tried first; a right-hand
