@@ -223,3 +223,27 @@ fn reactions_too_large_for_a_closed_form_are_refused_and_the_solution_stands() {
     );
     assert_eq!(analysis.derivations(), 1);
 }
+
+#[test]
+fn a_division_by_zero_in_the_model_is_an_error_at_its_divisor() {
+    // Each was a silent `1/0²` in the kinetic energy, exit 0 (issue 14).
+    for (position, column) in [
+        ("l/0*sin(theta)*N.x - l*cos(theta)*N.y", 13),
+        ("l/(2 - 2)*sin(theta)*N.x - l*cos(theta)*N.y", 13),
+        ("l*(theta - theta)^-1*N.x - l*cos(theta)*N.y", 13),
+    ] {
+        let text = format!(
+            "coordinates theta\nparameters m = 1, l = 1, g = 9.81\nframe N\npoint P = {position}\nparticle P mass m\ngravity -g*N.y\n"
+        );
+        let error = Analysis::from_text(&text)
+            .and_then(|a| a.equations().map(|_| ()))
+            .expect_err(position);
+        assert_eq!(error.kind(), lagrange::ErrorKind::Input, "{position}");
+        let rendered = error.render("m.lag", lagrange::model::RenderOptions::default());
+        assert!(rendered.contains("division by zero"), "{rendered}");
+        assert!(
+            rendered.contains(&format!("4:{column}")),
+            "{position}: {rendered}"
+        );
+    }
+}

@@ -43,6 +43,14 @@ pub enum LowerError {
         /// Where.
         span: Span,
     },
+    /// A divisor (or the base of a negative power) that is exactly zero.
+    #[error(
+        "division by zero: this divisor is zero, so the expression has no value; mend the divisor"
+    )]
+    DivisionByZero {
+        /// Where: the divisor.
+        span: Span,
+    },
 }
 
 impl LowerError {
@@ -52,7 +60,8 @@ impl LowerError {
         match self {
             LowerError::Shape { span, .. }
             | LowerError::Unresolved { span }
-            | LowerError::ZeroDirection { span } => *span,
+            | LowerError::ZeroDirection { span }
+            | LowerError::DivisionByZero { span } => *span,
         }
     }
 }
@@ -214,7 +223,16 @@ impl Lowerer<'_> {
                 Value::Vector(v) => Value::Vector(v.map(|c| -c)),
             },
             ExprKind::Binary { op, lhs, rhs } => {
-                binary(*op, self.expr(lhs)?, self.expr(rhs)?).map_err(shape)?
+                let (l, r) = (self.expr(lhs)?, self.expr(rhs)?);
+                if divides_by_zero(*op, l, r) {
+                    let span = if *op == BinaryOp::Pow {
+                        lhs.span
+                    } else {
+                        rhs.span
+                    };
+                    return Err(LowerError::DivisionByZero { span });
+                }
+                binary(*op, l, r).map_err(shape)?
             }
             ExprKind::Call { function, args } => {
                 let vals = args
@@ -282,6 +300,18 @@ impl Lowerer<'_> {
             // Not a reference: `expr` lowers everything else.
             _ => return Err(unresolved),
         })
+    }
+}
+
+/// `a / 0`, or `0^k` with `k < 0`: a divisor that the constructors fold to zero (`0`, `2 - 2`,
+/// `x - x`) has no value to give, whatever the rest of the model does with it.
+fn divides_by_zero(op: BinaryOp, lhs: Value, rhs: Value) -> bool {
+    match (op, lhs, rhs) {
+        (BinaryOp::Div, _, Value::Scalar(b)) => b.is_literal_zero(),
+        (BinaryOp::Pow, Value::Scalar(a), Value::Scalar(k)) => {
+            a.is_literal_zero() && k.as_number().is_some_and(Number::is_negative)
+        }
+        _ => false,
     }
 }
 
