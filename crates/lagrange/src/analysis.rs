@@ -352,6 +352,13 @@ impl Analysis {
                     .name
                     .span
             }
+            mechanics::Part::Constraint(name) => {
+                model
+                    .constraints()
+                    .iter()
+                    .find(|c| c.name.as_ref().map_or("constraint", |n| n.name.as_str()) == name)?
+                    .span
+            }
             // Loads that do no virtual work are not lowered; then the indices differ.
             mechanics::Part::Load(index) if model.loads().len() == self.system.loads().len() => {
                 model.loads().get(*index)?.span

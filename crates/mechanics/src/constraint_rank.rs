@@ -42,19 +42,8 @@ pub fn constraint_conflict(system: &System, equations: &Equations) -> Option<Con
         return None;
     }
     let values = parameter_values(system);
-    let env = |s: Symbol| {
-        values
-            .iter()
-            .find(|(n, _)| *n == s.name())
-            .map(|(_, v)| *v)
-            .or_else(|| Some(sample(s)))
-    };
-    let rows: Option<Vec<Vec<f64>>> = equations
-        .constraint_matrix()
-        .iter()
-        .map(|row| row.iter().map(|e| e.eval(&env).ok()).collect())
-        .collect();
-    let rows = rows?;
+    let env = generic_environment(&values);
+    let rows = generic_rows(equations.constraint_matrix(), &env)?;
     let mut distinct: Vec<&String> = Vec::new();
     for n in names {
         if !distinct.contains(&n) {
@@ -87,6 +76,41 @@ pub fn constraint_conflict(system: &System, equations: &Equations) -> Option<Con
         constraints: involved,
         contradictory,
     })
+}
+
+/// The rank of the constraint matrix `A` at a generic state (the parameters at their values
+/// where the system gives them): the number of independent constraints kept with multipliers.
+/// When an entry cannot be evaluated there, every row counts.
+#[must_use]
+pub(crate) fn generic_rank(system: &System, constraint_matrix: &[Vec<Expr>]) -> usize {
+    if constraint_matrix.is_empty() {
+        return 0;
+    }
+    let values = parameter_values(system);
+    let env = generic_environment(&values);
+    generic_rows(constraint_matrix, &env).map_or(constraint_matrix.len(), |rows| rank(&rows))
+}
+
+/// Parameter values where known, a pseudo-random value ([`sample`]) for every other symbol.
+fn generic_environment(values: &[(String, f64)]) -> impl Fn(Symbol) -> Option<f64> + '_ {
+    |s: Symbol| {
+        values
+            .iter()
+            .find(|(n, _)| *n == s.name())
+            .map(|(_, v)| *v)
+            .or_else(|| Some(sample(s)))
+    }
+}
+
+/// The rows of `A` evaluated in `env`; `None` when an entry cannot be.
+fn generic_rows(
+    constraint_matrix: &[Vec<Expr>],
+    env: &dyn Fn(Symbol) -> Option<f64>,
+) -> Option<Vec<Vec<f64>>> {
+    constraint_matrix
+        .iter()
+        .map(|row| row.iter().map(|e| e.eval(env).ok()).collect())
+        .collect()
 }
 
 /// Numeric values of the parameters and inputs that have constant ones.

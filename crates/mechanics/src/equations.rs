@@ -54,6 +54,9 @@ pub enum Part {
     Body(String),
     /// The potential of the load with this index in [`System::loads`].
     Load(usize),
+    /// The constraint of this name: its rates, its eliminated coordinate, or its
+    /// acceleration-level row.
+    Constraint(String),
 }
 
 impl std::fmt::Display for Part {
@@ -62,6 +65,7 @@ impl std::fmt::Display for Part {
             Part::Particle(p) => write!(f, "kinetic energy of particle `{p}`"),
             Part::Body(b) => write!(f, "kinetic energy of body `{b}`"),
             Part::Load(i) => write!(f, "potential of load {}", i + 1),
+            Part::Constraint(c) => write!(f, "constraint `{c}`"),
         }
     }
 }
@@ -117,12 +121,22 @@ pub struct Equations {
     constraint_matrix: Vec<Vec<Expr>>,
     constraint_rhs: Vec<Expr>,
     constraint_names: Vec<String>,
+    constraint_rank: usize,
     eliminated: Vec<Elimination>,
     accelerations: Option<Vec<Expr>>,
     first_integrals: Vec<FirstIntegral>,
 }
 
 impl Equations {
+    /// The degrees of freedom: the independent virtual displacements, `n − rank A` — the
+    /// coordinates left after the integrable constraints eliminated theirs, less the
+    /// independent constraints kept with multipliers, holonomic or not (a knife edge's three
+    /// coordinates and one rolling condition: 2).
+    #[must_use]
+    pub fn degrees_of_freedom(&self) -> usize {
+        self.coordinates.len().saturating_sub(self.constraint_rank)
+    }
+
     /// The independent coordinates.
     #[must_use]
     pub fn coordinates(&self) -> &[String] {
@@ -228,6 +242,7 @@ pub fn angular_velocity(r: &Rotation) -> Vector {
 fn eliminate(
     system: &mut System,
     eliminated: &mut Vec<Elimination>,
+    progress: &Progress,
 ) -> Result<Vec<(String, Expr)>, MechanicsError> {
     let mut kept = Vec::new();
     let constraints = system.constraints().to_vec();
@@ -240,6 +255,7 @@ fn eliminate(
         .collect();
     while let Some((name, form)) = pending.first().cloned() {
         pending.remove(0);
+        working_on(progress, Some(Part::Constraint(name.clone())));
         let coordinates = system.coordinates().to_vec();
         // Holonomic constraints stay implicit, with multipliers (the DAE form); only
         // velocity constraints that integrate eliminate a coordinate.
@@ -381,7 +397,8 @@ fn derive_limited(
 ) -> Result<Equations, MechanicsError> {
     let mut system = system.clone();
     let mut eliminated = Vec::new();
-    let kept = eliminate(&mut system, &mut eliminated)?;
+    let kept = eliminate(&mut system, &mut eliminated, progress)?;
+    working_on(progress, None);
     let coordinates = system.coordinates().to_vec();
     if coordinates.is_empty() {
         return Err(MechanicsError::NoCoordinates);
@@ -395,7 +412,10 @@ fn derive_limited(
     if check_mass_matrix {
         check_singular(&rows.mass_matrix, &coordinates)?;
     }
-    let (constraint_matrix, constraint_rhs, constraint_names) = constraint_rows(&kept, &vars)?;
+    let (constraint_matrix, constraint_rhs, constraint_names) =
+        constraint_rows(&kept, &vars, progress)?;
+    working_on(progress, None);
+    let constraint_rank = crate::constraint_rank::generic_rank(&system, &constraint_matrix);
     let accelerations = if coordinates.len() <= 2 && kept.is_empty() {
         explicit_accelerations(&rows.mass_matrix, &rows.forcing)
     } else {
@@ -430,6 +450,7 @@ fn derive_limited(
         forcing: rows.forcing,
         constraint_matrix,
         constraint_rhs,
+        constraint_rank,
         constraint_names,
         eliminated,
         accelerations,
@@ -628,11 +649,13 @@ fn lagrange_rows(
 fn constraint_rows(
     kept: &[(String, Expr)],
     vars: &Variables,
+    progress: &Progress,
 ) -> Result<(Vec<Vec<Expr>>, Vec<Expr>, Vec<String>), MechanicsError> {
     let mut constraint_matrix = Vec::new();
     let mut constraint_rhs = Vec::new();
     let mut constraint_names = Vec::new();
     for (name, c) in kept {
+        working_on(progress, Some(Part::Constraint(name.clone())));
         let Some((row, rest)) = c.dt().affine_coefficients(&vars.qdd) else {
             return Err(MechanicsError::NonlinearConstraint {
                 constraint: name.clone(),

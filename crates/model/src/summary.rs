@@ -60,7 +60,10 @@ impl Model {
             .map(|c| self.describe_constraint(c))
             .collect();
         Summary {
-            degrees_of_freedom: free.len().saturating_sub(holonomic),
+            // As `solve` counts them (`Equations::degrees_of_freedom`): the independent
+            // virtual displacements, so a velocity constraint takes one away too. Provisional:
+            // the statements are counted, not the independent rows the derivation finds.
+            degrees_of_freedom: free.len().saturating_sub(self.constraints.len()),
             coordinates: free,
             driven,
             bodies: self.describe_bodies(),
@@ -216,31 +219,24 @@ impl fmt::Display for Summary {
             writeln!(f, "{title}:")?;
             items.iter().try_for_each(|item| writeln!(f, "  {item}"))
         }
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        let velocity = if self.velocity_constraints > 0 {
+            format!(
+                " − {} velocity constraint{}",
+                self.velocity_constraints,
+                plural(self.velocity_constraints)
+            )
+        } else {
+            String::new()
+        };
         writeln!(
             f,
-            "degrees of freedom: {} ({} coordinate{} − {} holonomic constraint{}; provisional{})",
+            "degrees of freedom: {} ({} coordinate{} − {} holonomic constraint{}{velocity}; provisional)",
             self.degrees_of_freedom,
             self.coordinates.len(),
-            if self.coordinates.len() == 1 { "" } else { "s" },
+            plural(self.coordinates.len()),
             self.holonomic_constraints,
-            if self.holonomic_constraints == 1 {
-                ""
-            } else {
-                "s"
-            },
-            if self.velocity_constraints > 0 {
-                format!(
-                    ", plus {} velocity constraint{}",
-                    self.velocity_constraints,
-                    if self.velocity_constraints == 1 {
-                        ""
-                    } else {
-                        "s"
-                    }
-                )
-            } else {
-                String::new()
-            }
+            plural(self.holonomic_constraints),
         )?;
         writeln!(
             f,

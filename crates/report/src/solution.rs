@@ -53,8 +53,18 @@ fn system_section(system: &System, equations: &Equations, notation: &Notation) -
         .map(|q| coordinate(q).unicode)
         .collect();
     let n = equations.coordinates().len();
+    let dof = equations.degrees_of_freedom();
+    let kept = n - dof;
+    let count = if kept == 0 {
+        String::new()
+    } else {
+        format!(
+            " ({n} coordinates − {kept} independent constraint{} kept with multipliers)",
+            if kept == 1 { "" } else { "s" }
+        )
+    };
     s.paragraph(format!(
-        "Generalized coordinates: {}. Degrees of freedom: {n}.",
+        "Generalized coordinates: {}. Degrees of freedom: {dof}{count}.",
         names.join(", ")
     ));
     for e in equations.eliminated() {
