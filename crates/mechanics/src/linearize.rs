@@ -6,8 +6,9 @@
 //!
 //! Stability, never guessed:
 //! * Lagrange–Dirichlet when the system is conservative at rest (`K0` is the Hessian of the
-//!   effective potential `V − K|_{q̇=0}` and `C0` has no dissipation of the wrong sign): a
-//!   positive definite Hessian means *stable*;
+//!   effective potential `V − K|_{q̇=0}`, plus the potential of the generalized forces at rest
+//!   when they have one — constant forces and couples — and `C0` has no dissipation of the
+//!   wrong sign): a positive definite Hessian means *stable*;
 //! * otherwise, and as a cross-check, Lyapunov's indirect method on the state matrix
 //!   `A = [[0, I], [−M0⁻¹K0, −M0⁻¹C0]]`: an eigenvalue with a positive real part means
 //!   *unstable*, all in the open left half-plane *asymptotically stable*, anything else
@@ -31,7 +32,8 @@ pub struct LinearModel {
     pub input: Vec<Vec<Expr>>,
     /// The inputs' names (columns of `input`).
     pub inputs: Vec<String>,
-    /// The Hessian of the effective potential `V − K|_{q̇=0}`.
+    /// The Hessian of the effective potential `V − K|_{q̇=0}`, with the potential of the
+    /// generalized forces at rest added when they have one (constant forces and couples).
     pub hessian: Vec<Vec<Expr>>,
     /// For steady motions: Routh's reduced potential.
     pub routh: Option<Routh>,
@@ -276,7 +278,7 @@ pub fn linear_model(equations: &Equations, rest: &RestEquations, inputs: &[Strin
         .collect();
     let effective =
         (equations.potential_energy() - equations.kinetic_energy().subs(&zero_rates)).normal();
-    let hessian = rest
+    let mut hessian: Vec<Vec<Expr>> = rest
         .symbols
         .iter()
         .map(|a| {
@@ -284,6 +286,13 @@ pub fn linear_model(equations: &Equations, rest: &RestEquations, inputs: &[Strin
             rest.symbols.iter().map(|b| da.diff(*b).normal()).collect()
         })
         .collect();
+    if let Some(loads) = load_potential_hessian(equations, rest, &zero_rates) {
+        for (row, load_row) in hessian.iter_mut().zip(loads) {
+            for (h, l) in row.iter_mut().zip(load_row) {
+                *h = (*h + l).normal();
+            }
+        }
+    }
     let routh = routh(equations, rest, &zero_rates, &steady);
     LinearModel {
         routh,
@@ -294,6 +303,40 @@ pub fn linear_model(equations: &Equations, rest: &RestEquations, inputs: &[Strin
         inputs: inputs.to_vec(),
         hessian,
     }
+}
+
+/// The Hessian `−∂Q/∂q` of the potential of the generalized forces at rest, when they have
+/// one: `Q(q)` (rates at zero, inputs as symbols) is a gradient exactly when its Jacobian is
+/// symmetric as a function of `q` (checked in the normal form, so for every value of the
+/// inputs). Constant forces and couples fixed in the inertial frame (a push on a slider, a
+/// motor torque, `generalized force C on theta`) pass, and their potential `−F·r`, `−C θ` then
+/// counts in Lagrange–Dirichlet's criterion; a follower force, whose Jacobian is not
+/// symmetric (circulatory), does not, and the eigenvalues decide as before.
+fn load_potential_hessian(
+    equations: &Equations,
+    rest: &RestEquations,
+    zero_rates: &[(Expr, Expr)],
+) -> Option<Vec<Vec<Expr>>> {
+    let forces: Vec<Expr> = equations
+        .generalized_forces()
+        .iter()
+        .map(|q| q.subs(zero_rates).normal())
+        .collect();
+    if forces.iter().all(|q| q.is_zero()) {
+        return None;
+    }
+    let jacobian: Vec<Vec<Expr>> = forces
+        .iter()
+        .map(|q| rest.symbols.iter().map(|s| q.diff(*s)).collect())
+        .collect();
+    let n = jacobian.len();
+    let symmetric = (0..n).all(|i| (i + 1..n).all(|j| (jacobian[i][j] - jacobian[j][i]).is_zero()));
+    symmetric.then(|| {
+        jacobian
+            .iter()
+            .map(|row| row.iter().map(|x| (-*x).normal()).collect())
+            .collect()
+    })
 }
 
 /// What can go wrong evaluating a linearization.
