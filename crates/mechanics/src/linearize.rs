@@ -191,10 +191,13 @@ pub struct Linearized {
     pub b: Vec<Vec<f64>>,
     /// Eigenvalues of `A` as (re, im).
     pub eigenvalues: Vec<(f64, f64)>,
-    /// `ω²` of `K0 x = ω² M0 x` (symmetric part of `K0`), increasing; `None` when `M0` is not
+    /// `ω²` of `K0 x = ω² M0 x` (symmetric part of `K0`), increasing; when `C0` couples the
+    /// coordinates gyroscopically, those of the state matrix `A` instead (`(Im λ)²`, or
+    /// `−(Re λ)²` for a divergent pair), equal to its eigenvalues; `None` when `M0` is not
     /// positive definite.
     pub omega_squared: Option<Vec<f64>>,
-    /// Mode shapes (`xᵀ M0 x = 1`), one per `omega_squared`.
+    /// Mode shapes (`xᵀ M0 x = 1`), one per `omega_squared`; empty when `C0` couples the
+    /// coordinates gyroscopically (the modes are complex there).
     pub modes: Vec<Vec<f64>>,
     /// Damping ratios `ζ = −Re λ / |λ|` of the oscillatory eigenvalue pairs (Im λ > 0),
     /// by increasing `|λ|`.
@@ -394,6 +397,49 @@ fn substitute(m: &[Vec<Expr>], rest: &RestEquations, exact: &[Expr]) -> Vec<Vec<
         .collect()
 }
 
+/// Whether `C0` couples the coordinates gyroscopically (a skew-symmetric part, as about a
+/// steady motion or in a rotating frame) without dissipating: the undamped natural frequencies
+/// are then those of the whole linearization, not of `K0` and `M0` alone.
+fn gyroscopic(c0: &[Vec<f64>]) -> bool {
+    let n = c0.len();
+    let scale = max_abs(c0);
+    let part = |sign: f64| {
+        (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .fold(0.0_f64, |m, (i, j)| {
+                m.max((c0[i][j] + sign * c0[j][i]).abs() / 2.0)
+            })
+    };
+    scale > 0.0 && part(-1.0) > 1e-9 * scale && part(1.0) <= 1e-9 * scale
+}
+
+/// `ω²` of each mode from the eigenvalues `λ` of the state matrix (2n of them, in pairs):
+/// `ω²` = (Im λ)² for an oscillation (one of each conjugate pair), −(Re λ)² for a real pair
+/// ±γ (divergent), 0 for a neutral pair; n values, ascending, as `K0 x = ω² M0 x` gives them
+/// when there is no coupling.
+fn frequencies_of_state_matrix(eigenvalues: &[(f64, f64)]) -> Vec<f64> {
+    let scale = eigenvalues
+        .iter()
+        .fold(0.0_f64, |s, (re, im)| s.max(re.hypot(*im)));
+    let tol = 1e-7 * scale.max(1e-300);
+    let mut oscillating: Vec<f64> = eigenvalues
+        .iter()
+        .filter(|(_, im)| *im > tol)
+        .map(|(_, im)| im * im)
+        .collect();
+    let mut real: Vec<f64> = eigenvalues
+        .iter()
+        .filter(|(_, im)| im.abs() <= tol)
+        .map(|(re, _)| if re.abs() <= tol { 0.0 } else { -re * re })
+        .collect();
+    // A real pair ±γ (or a double zero) is one mode.
+    real.sort_by(f64::total_cmp);
+    let mut omega_squared: Vec<f64> = real.chunks(2).map(|pair| pair[0]).collect();
+    omega_squared.append(&mut oscillating);
+    omega_squared.sort_by(f64::total_cmp);
+    omega_squared
+}
+
 fn max_abs(m: &[Vec<f64>]) -> f64 {
     m.iter().flatten().fold(0.0_f64, |a, v| a.max(v.abs()))
 }
@@ -442,9 +488,14 @@ pub fn linearize_at(
         numeric::eigen::state_input(&m0, &b0)?
     };
     let eigenvalues = numeric::eigen::eigenvalues(&a)?;
-    let (omega_squared, modes) = match numeric::eigen::symmetric_generalized(&k0, &m0) {
-        Ok(e) => (Some(e.values), e.modes),
-        Err(_) => (None, Vec::new()),
+    let (omega_squared, modes) = if gyroscopic(&c0) {
+        // `K0 x = ω² M0 x` ignores the coupling: the frequencies are the state matrix's.
+        (Some(frequencies_of_state_matrix(&eigenvalues)), Vec::new())
+    } else {
+        match numeric::eigen::symmetric_generalized(&k0, &m0) {
+            Ok(e) => (Some(e.values), e.modes),
+            Err(_) => (None, Vec::new()),
+        }
     };
     let mut oscillatory: Vec<(f64, f64)> = eigenvalues
         .iter()

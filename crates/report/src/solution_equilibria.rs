@@ -410,25 +410,34 @@ fn frequencies_sentence(rest: &RestEquations, l: &Linearized) -> String {
     };
     let parts: Vec<String> = omega_squared
         .iter()
-        .zip(&l.modes)
-        .map(|(w2, mode)| {
-            let shape: Vec<String> = rest
-                .coordinates
-                .iter()
-                .zip(mode)
-                .map(|(q, x)| format!("{} {x:+.4}", coordinate(q).unicode))
-                .collect();
-            if *w2 > 0.0 {
-                format!("ω = {:.4} rad/s (mode {})", w2.sqrt(), shape.join(", "))
-            } else {
-                format!(
-                    "ω² = {w2:.4} ≤ 0, a divergent or neutral mode ({})",
-                    shape.join(", ")
-                )
+        .enumerate()
+        .map(|(k, w2)| {
+            // Gyroscopic coupling: complex modes, not shown.
+            let shape = l.modes.get(k).map(|mode| {
+                rest.coordinates
+                    .iter()
+                    .zip(mode)
+                    .map(|(q, x)| format!("{} {x:+.4}", coordinate(q).unicode))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            });
+            match (*w2 > 0.0, shape) {
+                (true, Some(shape)) => format!("ω = {:.4} rad/s (mode {shape})", w2.sqrt()),
+                (true, None) => format!("ω = {:.4} rad/s", w2.sqrt()),
+                (false, Some(shape)) => {
+                    format!("ω² = {w2:.4} ≤ 0, a divergent or neutral mode ({shape})")
+                }
+                (false, None) => format!("ω² = {w2:.4} ≤ 0, a divergent or neutral mode"),
             }
         })
         .collect();
     let mut sentence = format!("Natural frequencies: {}.", parts.join("; "));
+    if l.modes.is_empty() && !omega_squared.is_empty() {
+        sentence.push_str(
+            " They are those of the whole linearization: C0 couples the coordinates \
+             gyroscopically, so the modes are complex and K0, M0 alone do not give them.",
+        );
+    }
     let eigenvalues: Vec<String> = l
         .eigenvalues
         .iter()
