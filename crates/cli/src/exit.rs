@@ -56,25 +56,29 @@ impl Failure {
 
     /// A library error about the model file `path`.
     pub fn of(error: Error, path: &Path) -> Failure {
+        let color = std::io::stderr().is_terminal();
         let file = path.display().to_string();
+        let message = error.render(&file, model::RenderOptions::default().with_color(color));
+        Failure::with(&error, message)
+    }
+
+    /// A library error about no file (an expression on its own).
+    pub fn plain(error: Error) -> Failure {
+        Failure::with(&error, format!("error: {error}"))
+    }
+
+    /// The code of `error`'s kind, and how to go past a work limit after its message.
+    fn with(error: &Error, mut message: String) -> Failure {
         let code = match error.kind() {
             ErrorKind::Input => Exit::Input,
             ErrorKind::Internal => Exit::Internal,
+            ErrorKind::Output => Exit::Output,
             _ => Exit::Mechanics,
         };
-        let color = std::io::stderr().is_terminal();
-        let mut message = error.render(&file, model::RenderOptions::default().with_color(color));
         if error.work_limit().is_some() {
             message.push_str(WORK_LIMIT_HELP);
         }
         Failure { code, message }
-    }
-
-    /// A work limit of the symbolic core hit outside a model (`simplify`).
-    pub fn work_limit(error: &lagrange::cas::WorkLimitError) -> Failure {
-        let mut failure = Failure::new(Exit::Mechanics, error);
-        failure.message.push_str(WORK_LIMIT_HELP);
-        failure
     }
 
     /// The same failure with `what: ` before its message (a flag's name).
@@ -121,17 +125,7 @@ pub fn output_error(what: &str, error: &std::io::Error) -> Failure {
 /// Refuses an output file that is the model itself; says on stderr when an existing file is
 /// replaced.
 pub fn check_output(file: &Path, model: &Path) -> Result<(), Failure> {
-    let same = match (file.canonicalize(), model.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        return Err(Failure::input(format!(
-            "`{}` is the model file: lagrange never writes over its input; choose another name",
-            file.display()
-        )));
-    }
-    if file.exists() {
+    if lagrange::check_output(file, model).map_err(|e| Failure::of(e, model))? {
         eprintln!("replacing {}", file.display());
     }
     Ok(())
