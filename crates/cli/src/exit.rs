@@ -1,8 +1,7 @@
 //! The exit-code contract of every command (docs/cli.md), and the failure that carries a
 //! code and its message up to `main`.
 
-use lagrange::model;
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -41,24 +40,19 @@ pub struct Failure {
 }
 
 impl Failure {
-    /// A failure of this kind; the message is printed after `error: `.
-    pub fn new(code: Exit, message: impl std::fmt::Display) -> Failure {
-        Failure {
-            code,
-            message: format!("error: {message}"),
-        }
-    }
-
-    /// The user's mistake.
+    /// The user's mistake; the message is printed after `error: `.
     pub fn input(message: impl std::fmt::Display) -> Failure {
-        Failure::new(Exit::Input, message)
+        let message = format!("error: {message}");
+        Failure {
+            code: Exit::Input,
+            message,
+        }
     }
 
     /// A library error about the model file `path`.
     pub fn of(error: Error, path: &Path) -> Failure {
-        let color = std::io::stderr().is_terminal();
         let file = path.display().to_string();
-        let message = error.render(&file, model::RenderOptions::default().with_color(color));
+        let message = error.render(&file, crate::commands::render_options());
         Failure::with(&error, message)
     }
 
@@ -117,9 +111,10 @@ pub fn println(text: &str) -> Result<(), Failure> {
     print(&format!("{}\n", text.trim_end_matches('\n')))
 }
 
-/// A write error on `what`.
+/// A write error on `what` (the library's [`Error::Write`]).
 pub fn output_error(what: &str, error: &std::io::Error) -> Failure {
-    Failure::new(Exit::Output, format!("cannot write {what}: {error}"))
+    let (what, reason) = (what.to_owned(), error.to_string());
+    Failure::plain(Error::Write { what, reason })
 }
 
 /// Refuses an output file that is the model itself; says on stderr when an existing file is

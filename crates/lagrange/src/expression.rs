@@ -51,23 +51,3 @@ pub fn diff(text: &str, variable: &str, coordinates: &[String]) -> Result<Expr, 
         name: variable.to_owned(),
     })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::{diff, simplify};
-    use crate::{Error, ErrorKind};
-
-    #[test]
-    fn simplify_and_diff_read_coordinates_and_refuse_what_is_no_variable() {
-        let one = simplify("sin(x)^2 + cos(x)^2", &[]).unwrap();
-        assert_eq!(cas::print::to_sympy(one), "1");
-        let d = diff("theta^2", "t", &["theta".into()]).unwrap();
-        assert_eq!(cas::print::to_sympy(d), "2*theta*theta_d");
-        let e = diff("x*y", "2*x", &[]).unwrap_err();
-        assert!(matches!(e, Error::NotAVariable { .. }), "{e}");
-        assert_eq!(e.kind(), ErrorKind::Input);
-        let e = simplify("2 +", &[]).unwrap_err();
-        assert!(e.to_string().contains("column"), "{e}");
-        assert_eq!(e.kind(), ErrorKind::Input);
-    }
-}
