@@ -23,18 +23,14 @@ pub struct Cli {
 pub enum Command {
     /// Solve a model: everything lagrange can derive for it, step by step.
     Solve {
-        /// The model file (`.lag`).
-        model: PathBuf,
+        #[command(flatten)]
+        input: ModelInput,
         /// Output: the terminal, MyST Markdown, a standalone LaTeX document, or JSON.
         #[arg(long, value_enum, default_value_t = ReportFormat::Text)]
         format: ReportFormat,
         /// Write the report (and its figures) into this directory instead of printing it.
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
-        /// Override a parameter, an input or an initial value for this run:
-        /// `--set k=40 --set theta=0.3` (repeatable).
-        #[arg(long = "set", value_name = "NAME=VALUE")]
-        set: Vec<String>,
     },
     /// Check a model file and print its summary (degrees of freedom, coordinates, bodies,
     /// forces, constraints), or its errors.
@@ -44,34 +40,26 @@ pub enum Command {
     },
     /// Print Lagrange's equations of motion `M(q,t) q̈ = f(q,q̇,t)` of a model.
     Eom {
-        /// The model file (`.lag`).
-        model: PathBuf,
+        #[command(flatten)]
+        input: ModelInput,
         /// Output: text for people, or JSON (schema in docs/json.md).
         #[arg(long, value_enum, default_value_t = EomFormat::Text)]
         format: EomFormat,
-        /// Override a parameter, an input or an initial value for this run:
-        /// `--set k=40 --set theta=0.3` (repeatable).
-        #[arg(long = "set", value_name = "NAME=VALUE")]
-        set: Vec<String>,
     },
     /// Print the constraint reactions a model asks for (`reactions …`, `reaction NAME: …`),
     /// by Lagrange's equations of the 1st kind and by Newton–Euler, and whether they agree.
     Reactions {
-        /// The model file (`.lag`).
-        model: PathBuf,
+        #[command(flatten)]
+        input: ModelInput,
         /// Output: text for people, or JSON (schema in docs/json.md).
         #[arg(long, value_enum, default_value_t = EomFormat::Text)]
         format: EomFormat,
-        /// Override a parameter, an input or an initial value for this run:
-        /// `--set k=40 --set theta=0.3` (repeatable).
-        #[arg(long = "set", value_name = "NAME=VALUE")]
-        set: Vec<String>,
     },
     /// Find all equilibria (rest states with inputs held constant), exactly where possible,
     /// and decide their stability.
     Equilibria {
-        /// The model file (`.lag`).
-        model: PathBuf,
+        #[command(flatten)]
+        input: ModelInput,
         /// Search and parameter options.
         #[command(flatten)]
         options: EquilibriumOptions,
@@ -79,8 +67,8 @@ pub enum Command {
     /// Linearize about every equilibrium: M0, C0, K0, B0, natural frequencies, modes,
     /// eigenvalues, state-space A, B and controllability.
     Linearize {
-        /// The model file (`.lag`).
-        model: PathBuf,
+        #[command(flatten)]
+        input: ModelInput,
         /// Search and parameter options.
         #[command(flatten)]
         options: EquilibriumOptions,
@@ -176,15 +164,24 @@ impl ReportFormat {
     }
 }
 
+/// A model file and values for this run: what every command that reads a model takes.
+#[derive(Args, Debug, Clone)]
+pub struct ModelInput {
+    /// The model file (`.lag`).
+    pub model: PathBuf,
+    /// Override a parameter, an input or an initial value for this run: `k=40`, `theta=0.3`,
+    /// `theta_d=-1`; a number or a constant expression (`pi/4`, `2*g`), for an input a
+    /// function of `t` (docs/cli.md). Repeatable.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+}
+
 /// Options shared by `lagrange equilibria` and `lagrange linearize`.
 #[derive(Args, Debug, Clone)]
 pub struct EquilibriumOptions {
     /// Output: text for people, or JSON (schema in docs/json.md).
     #[arg(long, value_enum, default_value_t = EomFormat::Text)]
     pub format: EomFormat,
-    /// Override a parameter's or input's value, e.g. `--set Omega=3` (repeatable).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    pub set: Vec<String>,
     /// The search range of a non-angle coordinate, e.g. `--range x=-2..2` (default −10..10;
     /// angles always span one turn).
     #[arg(long = "range", value_name = "NAME=A..B")]

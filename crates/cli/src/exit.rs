@@ -1,8 +1,7 @@
 //! The exit-code contract of every command (docs/cli.md), and the failure that carries a
 //! code and its message up to `main`.
 
-use lagrange::model;
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -41,40 +40,39 @@ pub struct Failure {
 }
 
 impl Failure {
-    /// A failure of this kind; the message is printed after `error: `.
-    pub fn new(code: Exit, message: impl std::fmt::Display) -> Failure {
-        Failure {
-            code,
-            message: format!("error: {message}"),
-        }
-    }
-
-    /// The user's mistake.
+    /// The user's mistake; the message is printed after `error: `.
     pub fn input(message: impl std::fmt::Display) -> Failure {
-        Failure::new(Exit::Input, message)
+        let message = format!("error: {message}");
+        Failure {
+            code: Exit::Input,
+            message,
+        }
     }
 
     /// A library error about the model file `path`.
     pub fn of(error: Error, path: &Path) -> Failure {
         let file = path.display().to_string();
+        let message = error.render(&file, crate::commands::render_options());
+        Failure::with(&error, message)
+    }
+
+    /// A library error about no file (an expression on its own).
+    pub fn plain(error: Error) -> Failure {
+        Failure::with(&error, format!("error: {error}"))
+    }
+
+    /// The code of `error`'s kind, and how to go past a work limit after its message.
+    fn with(error: &Error, mut message: String) -> Failure {
         let code = match error.kind() {
             ErrorKind::Input => Exit::Input,
             ErrorKind::Internal => Exit::Internal,
+            ErrorKind::Output => Exit::Output,
             _ => Exit::Mechanics,
         };
-        let color = std::io::stderr().is_terminal();
-        let mut message = error.render(&file, model::RenderOptions::default().with_color(color));
         if error.work_limit().is_some() {
             message.push_str(WORK_LIMIT_HELP);
         }
         Failure { code, message }
-    }
-
-    /// A work limit of the symbolic core hit outside a model (`simplify`).
-    pub fn work_limit(error: &lagrange::cas::WorkLimitError) -> Failure {
-        let mut failure = Failure::new(Exit::Mechanics, error);
-        failure.message.push_str(WORK_LIMIT_HELP);
-        failure
     }
 
     /// The same failure with `what: ` before its message (a flag's name).
@@ -113,25 +111,16 @@ pub fn println(text: &str) -> Result<(), Failure> {
     print(&format!("{}\n", text.trim_end_matches('\n')))
 }
 
-/// A write error on `what`.
+/// A write error on `what` (the library's [`Error::Write`]).
 pub fn output_error(what: &str, error: &std::io::Error) -> Failure {
-    Failure::new(Exit::Output, format!("cannot write {what}: {error}"))
+    let (what, reason) = (what.to_owned(), error.to_string());
+    Failure::plain(Error::Write { what, reason })
 }
 
 /// Refuses an output file that is the model itself; says on stderr when an existing file is
 /// replaced.
 pub fn check_output(file: &Path, model: &Path) -> Result<(), Failure> {
-    let same = match (file.canonicalize(), model.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        return Err(Failure::input(format!(
-            "`{}` is the model file: lagrange never writes over its input; choose another name",
-            file.display()
-        )));
-    }
-    if file.exists() {
+    if lagrange::check_output(file, model).map_err(|e| Failure::of(e, model))? {
         eprintln!("replacing {}", file.display());
     }
     Ok(())

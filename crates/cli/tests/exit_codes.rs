@@ -81,6 +81,34 @@ fn a_users_mistake_is_one_for_every_command() {
     assert_eq!(code(&["frobnicate"]).0, Some(1), "an unknown command");
     assert_eq!(code(&["simulate", GOOD, "--rtol", "2"]).0, Some(1));
     assert_eq!(code(&["equilibria", GOOD, "--range", "x=2..1"]).0, Some(1));
+    // What describes one run, asked of a sweep: refused before any run, the flags named.
+    let sweep = [
+        "simulate", GOOD, "--t-end", "0.1", "--sweep", "k=10..20", "--steps", "1",
+    ];
+    for extra in [
+        ["--plot", "run.svg"],
+        ["--summary", "s.json"],
+        ["--record-when", "x"],
+    ] {
+        let (code, err) = code(&[&sweep[..], &extra[..]].concat());
+        assert_eq!(code, Some(1), "{extra:?}: {err}");
+        assert!(
+            err.contains(extra[0]) && err.contains("--sweep"),
+            "{extra:?}: {err}"
+        );
+    }
+    // A bifurcation diagram to a file type no plot is written as.
+    let plot = [
+        "--sweep",
+        "k=10..20",
+        "--steps",
+        "1",
+        "--plot",
+        "diagram.pdf",
+    ];
+    let (code, err) = code(&[&["equilibria", GOOD][..], &plot[..]].concat());
+    assert_eq!(code, Some(1), "{err}");
+    assert!(err.contains(".svg or .png"), "{err}");
 }
 
 #[test]
@@ -138,6 +166,9 @@ fn output_that_cannot_be_written_is_five_not_a_panic() {
         vec!["equilibria", GOOD],
         vec!["simplify", "x"],
         vec!["simulate", GOOD, "--t-end", "0.1"],
+        vec![
+            "simulate", GOOD, "--t-end", "0.1", "--sweep", "k=10..20", "--steps", "1",
+        ],
     ] {
         let full = std::fs::File::create("/dev/full").expect("/dev/full");
         let o = Command::new(env!("CARGO_BIN_EXE_lagrange"))

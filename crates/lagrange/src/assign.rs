@@ -211,6 +211,38 @@ pub fn deviations(
     Ok((dq, dv))
 }
 
+impl crate::Analysis {
+    /// Reads `NAME=A..B` (a search range, a sweep), the ends with the model's values.
+    ///
+    /// # Errors
+    /// As [`parse_range`].
+    pub fn read_range(&self, text: &str) -> Result<Range, AssignmentError> {
+        parse_range(text, &self.lookup())
+    }
+
+    /// Reads `NAME=VALUE` as a number (a steady motion's rate), with the model's values.
+    ///
+    /// # Errors
+    /// As [`parse_assignment`] and [`number`].
+    pub fn read_number(&self, text: &str) -> Result<(String, f64), AssignmentError> {
+        let assignment = parse_assignment(text)?;
+        let value = number(text, assignment.value, &self.lookup())?;
+        Ok((assignment.name, value))
+    }
+
+    /// Reads initial deviations about an equilibrium ([`deviations`]) with the model's values.
+    ///
+    /// # Errors
+    /// As [`deviations`].
+    pub fn read_deviations(
+        &self,
+        items: &[String],
+        coordinates: &[String],
+    ) -> Result<(Vec<f64>, Vec<f64>), AssignmentError> {
+        deviations(items, coordinates, &self.lookup())
+    }
+}
+
 /// Whether a value is a function of time.
 #[must_use]
 pub fn depends_on_time(value: Expr) -> bool {

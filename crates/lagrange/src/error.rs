@@ -14,6 +14,8 @@ pub enum ErrorKind {
     Mechanics,
     /// lagrange disagrees with itself (two methods give different answers): a bug.
     Internal,
+    /// An output could not be written (a full disk, a closed stream).
+    Output,
 }
 
 /// A model file or text with errors: its diagnostics and the text they point into.
@@ -111,6 +113,48 @@ pub enum Error {
     /// The figure could not be drawn.
     #[error(transparent)]
     Figure(#[from] draw::DrawError),
+    /// An expression given on its own does not parse.
+    #[error("{error}\n{}", error.render(text).trim_end())]
+    Expression {
+        /// The text.
+        text: String,
+        /// What is wrong, and where.
+        error: cas::ParseError,
+    },
+    /// What an expression was to be differentiated by is not a variable.
+    #[error("`{name}` is not a variable; write a symbol name such as `x`, a rate such as `theta_d`, or `t`")]
+    NotAVariable {
+        /// As given.
+        name: String,
+    },
+    /// An output file would be the model file itself, which is never written over.
+    #[error("`{}` is the model file: lagrange never writes over its input; choose another name", path.display())]
+    OverwritesInput {
+        /// The file.
+        path: PathBuf,
+    },
+    /// An output file could not be created.
+    #[error("cannot create `{}`: {reason}", path.display())]
+    Create {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
+    /// An output could not be written.
+    #[error("cannot write {what}: {reason}")]
+    Write {
+        /// What was being written (`the CSV`, `the summary`, a file name in backquotes).
+        what: String,
+        /// Why.
+        reason: String,
+    },
+    /// A plot could not be drawn or written, or its file name does not say its format.
+    #[error(transparent)]
+    Plot(#[from] report::PlotError),
+    /// An output that describes one run was asked of a sweep.
+    #[error("{0} one run; leave it out of a sweep")]
+    OneRunOnly(OneRunOnly),
     /// lagrange disagrees with itself.
     #[error("internal inconsistency (a bug of lagrange): {0}")]
     Inconsistent(String),
@@ -125,6 +169,28 @@ pub enum Error {
         /// Line and column (1-based) of the model statement being derived, when known.
         at: Option<(usize, usize)>,
     },
+}
+
+/// What describes one run, and so has no meaning for a sweep ([`Error::OneRunOnly`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum OneRunOnly {
+    /// A plot of the run.
+    Plot,
+    /// Recorded crossings (the expressions to record, or the file of events).
+    Crossings,
+    /// The JSON summary of the run.
+    Summary,
+}
+
+impl std::fmt::Display for OneRunOnly {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            OneRunOnly::Plot => "a plot draws",
+            OneRunOnly::Crossings => "recorded crossings belong to",
+            OneRunOnly::Summary => "a summary describes",
+        })
+    }
 }
 
 impl Error {
@@ -153,7 +219,12 @@ impl Error {
                 at: Some((line, column)),
                 ..
             } => format!("error: {file}:{line}:{column}: {message}"),
-            Error::Read { .. } => format!("error: {self}"),
+            Error::Read { .. }
+            | Error::OverwritesInput { .. }
+            | Error::Create { .. }
+            | Error::Write { .. }
+            | Error::Plot(_)
+            | Error::OneRunOnly(_) => format!("error: {self}"),
             _ => format!("error: {file}: {self}"),
         }
     }
@@ -179,7 +250,14 @@ impl Error {
             | Error::UnknownMethod { .. }
             | Error::MissingValue { .. }
             | Error::NotAvailable(_)
-            | Error::Figure(_) => ErrorKind::Input,
+            | Error::Figure(_)
+            | Error::Expression { .. }
+            | Error::NotAVariable { .. }
+            | Error::OverwritesInput { .. }
+            | Error::Create { .. }
+            | Error::Plot(report::PlotError::Format { .. })
+            | Error::OneRunOnly(_) => ErrorKind::Input,
+            Error::Write { .. } | Error::Plot(_) => ErrorKind::Output,
             Error::Located { kind, .. } => *kind,
             Error::Simulation(
                 S::InvalidSetting { .. }

@@ -65,16 +65,18 @@ pub mod assign;
 pub mod csv;
 mod equilibria;
 mod error;
+pub mod expression;
 mod figure;
 mod reactions;
 mod runs;
 mod simulate;
 mod solve;
+mod written;
 
 pub use analysis::{Analysis, Source};
 pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Range};
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
-pub use error::{Error, ErrorKind, ModelErrors};
+pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use reactions::Reactions;
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
@@ -82,6 +84,7 @@ pub use simulate::{
     Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution};
+pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;
 pub use draw;

@@ -29,6 +29,22 @@ impl Reactions {
             .iter()
             .any(|r| r.agreement == Agreement::Disagree)
     }
+
+    /// The reactions as `lagrange reactions` prints them: each by both methods, and for a
+    /// one-sided one where it holds.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        let texts: Vec<String> = (self.reactions.iter().zip(&self.unilateral))
+            .map(|(r, u)| report::reaction_text(r, u.as_ref()))
+            .collect();
+        texts.join("\n")
+    }
+
+    /// The reactions as JSON (docs/json.md).
+    #[must_use]
+    pub fn to_json(&self) -> serde_json::Value {
+        report::reactions_json(&self.coordinates, &self.reactions, &self.unilateral)
+    }
 }
 
 /// Whether a request is for a force that can only push or pull.

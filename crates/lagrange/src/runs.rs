@@ -14,6 +14,27 @@ pub struct SweepTable {
     pub failed: usize,
     /// All runs.
     pub runs: usize,
+    /// Wall time of the runs, in seconds (set by [`Analysis::write_sweep`], else 0).
+    pub wall_time: f64,
+    /// Derivations of the equations of motion for all the runs (set by
+    /// [`Analysis::write_sweep`], else 0; one, however many runs).
+    pub derivations: usize,
+}
+
+impl SweepTable {
+    /// One line on the sweep: runs, threads, wall time, derivations, failures.
+    #[must_use]
+    pub fn summary_line(&self) -> String {
+        format!(
+            "{} runs on {} threads in {:.2} s ({} derivation{}), {} failed",
+            self.runs,
+            std::thread::available_parallelism().map_or(1, usize::from),
+            self.wall_time,
+            self.derivations,
+            if self.derivations == 1 { "" } else { "s" },
+            self.failed
+        )
+    }
 }
 
 /// What to sweep: ranges as `NAME=A..B` text, and how to draw values from them.
@@ -68,6 +89,8 @@ impl Analysis {
             csv,
             failed,
             runs: values.len(),
+            wall_time: 0.0,
+            derivations: 0,
         })
     }
 }

@@ -433,32 +433,7 @@ impl Simulation {
                 constraints: equations.constraint_names().join(", "),
             });
         }
-        let known = EventNames::new(&coordinates, &setup.values);
-        let mut events = Vec::new();
-        for event in &setup.stop_events {
-            events.push(match event {
-                StopEvent::Condition(text) => {
-                    known
-                        .parse(text)
-                        .map_err(|reason| SimulationError::StopCondition {
-                            text: text.clone(),
-                            reason,
-                        })?
-                }
-                StopEvent::ContactLost { value, .. } => *value,
-            });
-        }
-        let stopping_events = events.len();
-        for text in &setup.record_when {
-            events.push(
-                known
-                    .parse(text)
-                    .map_err(|reason| SimulationError::RecordCondition {
-                        text: text.clone(),
-                        reason,
-                    })?,
-            );
-        }
+        let (events, stopping_events) = compile_events(&coordinates, &setup)?;
         let mut compiled = Compiled::new(
             system,
             equations,
@@ -471,24 +446,7 @@ impl Simulation {
         .map_err(|e| missing_value(e, &coordinates))?;
 
         let t_start = settings.t_start;
-        let given = setup.initial;
-        let mut initial = given.clone();
-        // Constrained: start on the constraint manifold (positions, then velocities).
-        SecondOrder::new(&mut compiled)
-            .project(t_start, &mut initial)
-            .map_err(SimulationError::Initial)?;
-        let moved = given
-            .iter()
-            .zip(&initial)
-            .any(|(a, b)| (a - b).abs() > MOVED * (1.0 + a.abs()));
-        let correction = moved.then(|| InitialCorrection {
-            given,
-            corrected: initial.clone(),
-        });
-        let mut probe = vec![0.0; 2 * n];
-        SecondOrder::new(&mut compiled)
-            .rhs(t_start, &initial, &mut probe)
-            .map_err(SimulationError::Initial)?;
+        let (initial, correction) = start_on_constraints(&mut compiled, t_start, setup.initial)?;
         compiled.set_state(&initial[..n], &initial[n..], t_start);
         let (initial_energy, _) = compiled.energy_and_drift();
 
@@ -758,6 +716,69 @@ impl RowMaker {
         self.row[2 * n + 2] = drift;
         &self.row
     }
+}
+
+/// The stop events (the conditions read, the contacts' reactions as they are), then the
+/// recorded expressions, as expressions of `t`, the coordinates, their rates and the
+/// parameters; also how many of them stop the run.
+fn compile_events(
+    coordinates: &[String],
+    setup: &Setup,
+) -> Result<(Vec<cas::Expr>, usize), SimulationError> {
+    let known = EventNames::new(coordinates, &setup.values);
+    let mut events = Vec::new();
+    for event in &setup.stop_events {
+        events.push(match event {
+            StopEvent::Condition(text) => {
+                known
+                    .parse(text)
+                    .map_err(|reason| SimulationError::StopCondition {
+                        text: text.clone(),
+                        reason,
+                    })?
+            }
+            StopEvent::ContactLost { value, .. } => *value,
+        });
+    }
+    let stopping_events = events.len();
+    for text in &setup.record_when {
+        events.push(
+            known
+                .parse(text)
+                .map_err(|reason| SimulationError::RecordCondition {
+                    text: text.clone(),
+                    reason,
+                })?,
+        );
+    }
+    Ok((events, stopping_events))
+}
+
+/// The initial state moved onto the constraint manifold (positions, then velocities), with
+/// the correction when it moved; the equations are evaluated there once, so that a state
+/// where they cannot be solved fails before the run.
+fn start_on_constraints(
+    compiled: &mut Compiled,
+    t_start: f64,
+    given: Vec<f64>,
+) -> Result<(Vec<f64>, Option<InitialCorrection>), SimulationError> {
+    let mut initial = given.clone();
+    SecondOrder::new(compiled)
+        .project(t_start, &mut initial)
+        .map_err(SimulationError::Initial)?;
+    let moved = given
+        .iter()
+        .zip(&initial)
+        .any(|(a, b)| (a - b).abs() > MOVED * (1.0 + a.abs()));
+    let correction = moved.then(|| InitialCorrection {
+        given,
+        corrected: initial.clone(),
+    });
+    let mut probe = vec![0.0; initial.len()];
+    SecondOrder::new(compiled)
+        .rhs(t_start, &initial, &mut probe)
+        .map_err(SimulationError::Initial)?;
+    Ok((initial, correction))
 }
 
 fn check_setting(

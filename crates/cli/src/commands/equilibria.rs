@@ -3,23 +3,28 @@
 
 use std::path::Path;
 
-use lagrange::{Analysis, Range, Search};
+use lagrange::{Analysis, Search};
 
-use crate::args::{EomFormat, EquilibriumOptions};
+use super::{each, eom::json};
+use crate::args::{EomFormat, EquilibriumOptions, ModelInput};
 use crate::exit::{println, Exit, Failure};
 
 /// `lagrange equilibria` (`initial` is `None`) or `lagrange linearize`.
 pub fn run(
-    path: &Path,
+    input: &ModelInput,
     options: &EquilibriumOptions,
     only: Option<usize>,
     initial: Option<&[String]>,
 ) -> Result<Exit, Failure> {
-    let analysis = super::load(path, &options.set)?;
-    let search = search(&analysis, options)?;
-    let json = options.format == EomFormat::Json;
+    let path = input.model.as_path();
+    let analysis = super::load(path, &input.set)?;
+    let search = Search {
+        steady: each(&options.steady, "--steady", |s| analysis.read_number(s))?,
+        ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
+    };
+    let as_json = options.format == EomFormat::Json;
     if let Some(sweep) = &options.sweep {
-        return run_sweep(path, &analysis, &search, sweep, options, json);
+        return run_sweep(path, &analysis, &search, sweep, options);
     }
     if options.plot.is_some() {
         return Err(Failure::input(
@@ -36,17 +41,16 @@ pub fn run(
         )));
     }
     let text = match initial {
-        None if json => super::eom::json(&found.to_json()),
+        None if as_json => json(&found.to_json()),
         None => found.to_text(),
         Some(initial) => {
-            let lookup = analysis.lookup();
             let deviations = (!initial.is_empty())
-                .then(|| lagrange::assign::deviations(initial, &found.rest.coordinates, &lookup))
+                .then(|| analysis.read_deviations(initial, &found.rest.coordinates))
                 .transpose()
                 .map_err(|e| Failure::input(format!("--initial {e}")))?;
             let deviations = deviations.as_ref().map(|(q, v)| (&q[..], &v[..]));
-            if json {
-                super::eom::json(&found.linearized_json(only, deviations))
+            if as_json {
+                json(&found.linearized_json(only, deviations))
             } else {
                 found.linearized_text(only, deviations)
             }
@@ -56,49 +60,27 @@ pub fn run(
     Ok(Exit::Success)
 }
 
-/// `--steady` and `--range` as a search.
-fn search(analysis: &Analysis, options: &EquilibriumOptions) -> Result<Search, Failure> {
-    let lookup = analysis.lookup();
-    let mut search = Search::default();
-    for item in &options.steady {
-        let a = lagrange::parse_assignment(item)
-            .map_err(|e| Failure::input(format!("--steady {e}")))?;
-        let rate = lagrange::assign::number(item, a.value, &lookup)
-            .map_err(|e| Failure::input(format!("--steady {e}")))?;
-        search.steady.push((a.name, rate));
-    }
-    for item in &options.range {
-        let range = lagrange::parse_range(item, &lookup)
-            .map_err(|e| Failure::input(format!("--range {e}")))?;
-        search.ranges.push(range);
-    }
-    Ok(search)
-}
-
 fn run_sweep(
     path: &Path,
     analysis: &Analysis,
     search: &Search,
     sweep: &str,
     options: &EquilibriumOptions,
-    json: bool,
 ) -> Result<Exit, Failure> {
-    let range: Range = lagrange::parse_range(sweep, &analysis.lookup())
+    let range = analysis
+        .read_range(sweep)
         .map_err(|e| Failure::input(format!("--sweep {e}")))?;
     let table = analysis
         .equilibrium_sweep(search, &range, options.steps)
         .map_err(|e| Failure::of(e, path).prefixed("--sweep"))?;
     if let Some(plot) = &options.plot {
-        table
-            .plot(plot)
-            .map_err(|e| Failure::new(Exit::Output, e))?;
+        table.plot(plot).map_err(|e| Failure::of(e.into(), path))?;
         eprintln!("wrote {}", plot.display());
     }
-    let text = if json {
-        super::eom::json(&table.to_json())
+    println(&if options.format == EomFormat::Json {
+        json(&table.to_json())
     } else {
         table.to_text()
-    };
-    println(&text)?;
+    })?;
     Ok(Exit::Success)
 }

@@ -21,22 +21,19 @@ use crate::exit::{Exit, Failure};
 /// Runs one subcommand.
 pub fn run(command: Command) -> Result<Exit, Failure> {
     match command {
-        Command::Solve {
-            model,
-            format,
-            out,
-            set,
-        } => solve::run(&model, format, out.as_deref(), &set),
+        Command::Solve { input, format, out } => {
+            solve::run(&input.model, format, out.as_deref(), &input.set)
+        }
         Command::Check { model } => check::run(&model),
-        Command::Eom { model, format, set } => eom::run(&model, format, &set),
-        Command::Reactions { model, format, set } => reactions::run(&model, format, &set),
-        Command::Equilibria { model, options } => equilibria::run(&model, &options, None, None),
+        Command::Eom { input, format } => eom::run(&input.model, format, &input.set),
+        Command::Reactions { input, format } => reactions::run(&input.model, format, &input.set),
+        Command::Equilibria { input, options } => equilibria::run(&input, &options, None, None),
         Command::Linearize {
-            model,
+            input,
             options,
             equilibrium,
             initial,
-        } => equilibria::run(&model, &options, equilibrium, Some(&initial)),
+        } => equilibria::run(&input, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
         Command::Draw(args) => draw::run(&args),
         Command::Animate(args) => animate::run(&args),
@@ -69,6 +66,16 @@ pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
             .map_err(|e| Failure::input(format!("--set {item}: {e}")))?;
     }
     Ok(analysis)
+}
+
+/// Reads each item of a repeated flag; an error names the flag.
+pub fn each<T>(
+    items: &[String],
+    flag: &str,
+    read: impl Fn(&str) -> Result<T, lagrange::AssignmentError>,
+) -> Result<Vec<T>, Failure> {
+    let read = |item: &String| read(item).map_err(|e| Failure::input(format!("{flag} {e}")));
+    items.iter().map(read).collect()
 }
 
 /// Colour when stderr is a terminal.

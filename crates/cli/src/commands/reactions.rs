@@ -1,7 +1,6 @@
 //! `lagrange reactions MODEL`: the constraint reactions a model asks for, by Lagrange I and
 //! Newton–Euler, for people or as JSON.
 
-use lagrange::report;
 use std::path::Path;
 
 use crate::args::EomFormat;
@@ -16,20 +15,8 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> Result<Exit, Failu
         ));
     };
     match format {
-        EomFormat::Json => println(&super::eom::json(&report::reactions_json(
-            &computed.coordinates,
-            &computed.reactions,
-            &computed.unilateral,
-        )))?,
-        EomFormat::Text => {
-            let texts: Vec<String> = computed
-                .reactions
-                .iter()
-                .zip(&computed.unilateral)
-                .map(|(r, u)| report::reaction_text(r, u.as_ref()))
-                .collect();
-            print(&texts.join("\n"))?;
-        }
+        EomFormat::Json => println(&super::eom::json(&computed.to_json()))?,
+        EomFormat::Text => print(&computed.to_text())?,
     }
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
     Ok(if computed.disagree() {

@@ -4,22 +4,20 @@
 //! part-way keeps and writes what it computed, then says when and why it stopped. With
 //! `--sweep`, many runs on all cores, one CSV row each, from one derivation.
 
-use lagrange::report;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use lagrange::{Analysis, Ending, MethodName, SimulationOptions};
+use lagrange::{Analysis, Ending, Error, MethodName, RunFiles, SimulationOptions};
 
-use crate::exit::{check_output, output_error, Exit, Failure};
+use crate::exit::{check_output, Exit, Failure};
 
 /// Flags of `lagrange simulate`.
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
-    /// The model file (`.lag`).
-    pub model: PathBuf,
+    #[command(flatten)]
+    pub input: crate::args::ModelInput,
     /// End time (default: the model's `simulate to`).
     #[arg(long, allow_hyphen_values = true)]
     pub t_end: Option<f64>,
@@ -55,10 +53,6 @@ pub struct SimulateArgs {
     /// (default: 256 MiB).
     #[arg(long, value_name = "N")]
     pub max_bytes: Option<u64>,
-    /// Override a parameter, an input, or an initial value for this run: `k=40`, `theta=0.3`,
-    /// `theta_d=-1`; the value may be an expression of numbers and `pi` (`pi/4`). Repeatable.
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    pub set: Vec<String>,
     /// Stop where this expression of `t`, the coordinates and their rates (`q_d`) crosses zero.
     #[arg(long, value_name = "EXPR", allow_hyphen_values = true)]
     pub stop_when: Option<String>,
@@ -125,170 +119,115 @@ fn options(args: &SimulateArgs) -> SimulationOptions {
 
 /// Runs `lagrange simulate`.
 pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
-    let analysis = super::load(&args.model, &args.set)?;
-    for file in [&args.out, &args.events, &args.summary, &args.plot]
-        .into_iter()
-        .flatten()
-    {
-        check_output(file, &args.model)?;
+    let analysis = super::load(&args.input.model, &args.input.set)?;
+    let files = RunFiles {
+        model: args.input.model.clone(),
+        csv: args.out.clone(),
+        events: args.events.clone(),
+        summary: args.summary.clone(),
+        plot: args.plot.clone(),
+        max_bytes: args.max_bytes,
+    };
+    for file in files.outputs() {
+        check_output(file, &args.input.model)?;
     }
     let options = options(args);
     if !args.sweep.is_empty() {
-        return sweep(args, &analysis, &options);
+        return sweep(args, &analysis, &options, &files);
     }
-    if let Some(path) = &args.plot {
-        // Refuse a bad plot name before the run rather than after it.
-        let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if !ext.eq_ignore_ascii_case("svg") && !ext.eq_ignore_ascii_case("png") {
-            return Err(Failure::input(format!(
-                "cannot plot to `{}`: the file name must end in .svg or .png",
-                path.display()
-            )));
-        }
-    }
-    let mut simulation = analysis
-        .simulation(&options)
+    let prepared = analysis
+        .prepare_run(&options, files)
         .map_err(|e| failure(e, args))?;
-    if let Some(warning) = lagrange::correction_warning(&simulation) {
+    if let Some(warning) = prepared.warning() {
         eprintln!("warning: {warning}");
     }
-    // Every output file is created before the run, so a bad path fails before a long run.
-    let mut writer: Box<dyn Write> = match &args.out {
-        Some(path) => Box::new(create(path)?),
-        None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
-    };
-    let events_writer = args.events.as_deref().map(create).transpose()?;
-    let summary_writer = args.summary.as_deref().map(create).transpose()?;
-    let (t0, t1) = simulation.span();
     let started = Instant::now();
     let mut progress: Option<ProgressBar> = None;
-    let run = lagrange::run_to_csv(
-        &mut simulation,
-        &mut writer,
-        args.plot.is_some(),
-        args.max_bytes.unwrap_or(lagrange::DEFAULT_MAX_BYTES),
-        &mut |t| {
-            // A progress bar only for runs long enough to need one; indicatif hides it when
-            // stderr is not a terminal.
+    let written = prepared
+        .run(&mut std::io::stdout().lock(), &mut |done| {
+            // A bar only for runs long enough to need one (hidden when stderr is no terminal).
             if progress.is_none() && started.elapsed().as_secs_f64() > 0.5 {
                 progress = Some(bar(
                     "simulating {bar:40} {percent:>3}% ({elapsed}, eta {eta})",
                 ));
             }
             if let Some(bar) = &progress {
-                bar.set_position((((t - t0) / (t1 - t0)).clamp(0.0, 1.0) * 1000.0) as u64);
+                bar.set_position((done * 1000.0) as u64);
             }
-        },
-    )
-    .map_err(|e| output_error("the CSV", &e))?;
+        })
+        .map_err(|e| failure(e, args))?;
     if let Some(bar) = progress {
         bar.finish_and_clear();
     }
-    drop(writer);
-    let outcome = &run.outcome;
-    eprintln!("{}", run.summary_line(&simulation));
-    if !args.record_when.is_empty() {
-        eprintln!(
-            "{}",
-            lagrange::csv::crossings_line(&args.record_when, &run.tally.crossings)
-        );
+    eprintln!("{}", written.summary_line);
+    if let Some(line) = &written.crossings_line {
+        eprintln!("{line}");
     }
-    write_extras(args, &simulation, &run, events_writer, summary_writer)?;
-    for path in [&args.out, &args.events, &args.summary]
-        .into_iter()
-        .flatten()
-    {
+    for path in &written.written {
         eprintln!("wrote {}", path.display());
     }
-    if let Some(path) = &args.plot {
-        let title = format!("{} — {}", stem(&args.model), simulation.method());
-        report::plot_run(path, &title, &simulation.columns(), &run.kept)
-            .map_err(|e| Failure::new(Exit::Output, e))?;
-        eprintln!("wrote {}", path.display());
-    }
-    Ok(exit_of(&run.ending, outcome.t))
-}
-
-/// `--events` and `--summary`, into the files created before the run.
-fn write_extras(
-    args: &SimulateArgs,
-    simulation: &lagrange::simulation::Simulation,
-    run: &lagrange::Streamed,
-    events: Option<std::io::BufWriter<std::fs::File>>,
-    summary: Option<std::io::BufWriter<std::fs::File>>,
-) -> Result<(), Failure> {
-    let model = args.model.display().to_string();
-    let events_text = || run.events_csv(simulation, &args.record_when);
-    let summary_text = || super::eom::json(&run.summary_json(&model, simulation)) + "\n";
-    let texts: [(_, _, &dyn Fn() -> String); 2] = [
-        (events, "the events", &events_text),
-        (summary, "the summary", &summary_text),
-    ];
-    for (writer, what, text) in texts {
-        if let Some(mut w) = writer {
-            w.write_all(text().as_bytes())
-                .and_then(|()| w.flush())
-                .map_err(|e| output_error(what, &e))?;
-        }
-    }
-    Ok(())
+    Ok(exit_of(
+        &written.streamed.ending,
+        written.streamed.outcome.t,
+    ))
 }
 
 /// The exit code of a run's ending, said on stderr when it stopped early.
 fn exit_of(ending: &Ending, t: f64) -> Exit {
-    if let Some(sentence) = ending.sentence(t) {
-        match ending {
-            Ending::Failed(failure) => {
-                eprintln!("error: {sentence}; the rows computed up to then were written");
-                if let Some(hint) = hint(failure) {
-                    eprintln!("hint: {hint}");
-                }
-            }
-            Ending::OutputLimit { .. } => {
-                eprintln!("error: {sentence}; the rows computed up to then were written");
-                eprintln!("hint: raise the limit with --max-bytes N, or write fewer rows with --output-step");
-            }
-            Ending::ContactLost { .. } => {
-                eprintln!("{sentence}; run with --through-contact-loss to go on regardless");
-            }
-            _ => eprintln!("{sentence}"),
-        }
-    }
-    if ending.stopped_short() {
-        Exit::RunFailed
+    let Some(sentence) = ending.sentence(t) else {
+        return Exit::Success;
+    };
+    if let Ending::ContactLost { .. } = ending {
+        eprintln!("{sentence}; run with --through-contact-loss to go on regardless");
+    } else if !ending.stopped_short() {
+        eprintln!("{sentence}");
     } else {
-        Exit::Success
+        eprintln!("error: {sentence}; the rows computed up to then were written");
+        if let Some(hint) = hint(ending) {
+            eprintln!("hint: {hint}");
+        }
+        return Exit::RunFailed;
     }
+    Exit::Success
 }
 
-/// The flag that helps with a failure that a limit or the method decided.
-fn hint(failure: &lagrange::numeric::Failure) -> Option<&'static str> {
+/// The flag that helps with a run that a limit or the method stopped.
+fn hint(ending: &Ending) -> Option<&'static str> {
     use lagrange::numeric::Failure as F;
-    match failure {
-        F::Stiff { .. } => Some("stiff: use --method sdirk"),
-        F::NotConverged { .. } => Some("if stiff, use --method sdirk; else give a smaller --step"),
-        F::TooManySteps { .. } => Some("raise the limit with --max-steps N"),
-        F::TooManyOutputs { .. } => {
-            Some("raise the limit with --max-rows N, or write fewer rows with --output-step")
+    Some(match ending {
+        Ending::Failed(F::Stiff { .. }) => "stiff: use --method sdirk",
+        Ending::Failed(F::NotConverged { .. }) => {
+            "if stiff, use --method sdirk; else give a smaller --step"
         }
-        _ => None,
-    }
+        Ending::Failed(F::TooManySteps { .. }) => "raise the limit with --max-steps N",
+        Ending::Failed(F::TooManyOutputs { .. }) => {
+            "raise the limit with --max-rows N, or write fewer rows with --output-step"
+        }
+        Ending::OutputLimit { .. } => {
+            "raise the limit with --max-bytes N, or write fewer rows with --output-step"
+        }
+        _ => return None,
+    })
 }
 
 /// A library error, with the flag named where it comes from one.
-fn failure(error: lagrange::Error, args: &SimulateArgs) -> Failure {
+fn failure(error: Error, args: &SimulateArgs) -> Failure {
     use lagrange::simulation::SimulationError as S;
     match &error {
-        lagrange::Error::Simulation(S::StopCondition { reason, .. }) => {
+        Error::Simulation(S::StopCondition { reason, .. }) => {
             Failure::input(format!("--stop-when: {reason}"))
         }
-        lagrange::Error::Simulation(S::RecordCondition { reason, .. }) => {
+        Error::Simulation(S::RecordCondition { reason, .. }) => {
             Failure::input(format!("--record-when: {reason}"))
         }
-        lagrange::Error::Simulation(S::BeyondLimit { limit, .. }) => {
+        Error::Simulation(S::BeyondLimit { limit, .. }) => {
             Failure::input(format!("{error} (--max-{limit}s N)"))
         }
-        _ => Failure::of(error, &args.model),
+        Error::OneRunOnly(what) => Failure::input(match what {
+            lagrange::OneRunOnly::Plot => "--plot draws one run; leave it out of a --sweep",
+            _ => "--record-when, --events and --summary describe one run; leave them out of a --sweep",
+        }),
+        _ => Failure::of(error, &args.input.model),
     }
 }
 
@@ -297,19 +236,9 @@ fn sweep(
     args: &SimulateArgs,
     analysis: &Analysis,
     options: &SimulationOptions,
+    files: &RunFiles,
 ) -> Result<Exit, Failure> {
-    if args.plot.is_some() {
-        return Err(Failure::input(
-            "--plot draws one run; leave it out of a --sweep",
-        ));
-    }
-    if !args.record_when.is_empty() || args.events.is_some() || args.summary.is_some() {
-        return Err(Failure::input(
-            "--record-when, --events and --summary describe one run; leave them out of a --sweep",
-        ));
-    }
     let progress = bar("{bar:40} {pos}/{len} runs, {elapsed} (eta {eta})");
-    let started = Instant::now();
     let request = lagrange::SweepRequest {
         ranges: &args.sweep,
         samples: args.samples,
@@ -317,30 +246,20 @@ fn sweep(
         seed: args.seed,
     };
     let table = analysis
-        .sweep_table(
+        .write_sweep(
             options,
             &request,
+            files,
+            &mut std::io::stdout().lock(),
             &mut |n| progress.set_length(n as u64),
             &|| progress.inc(1),
         )
-        .map_err(|e| failure(e, args).prefixed("--sweep"))?;
+        .map_err(|e| match e {
+            Error::OneRunOnly(_) | Error::Create { .. } | Error::Write { .. } => failure(e, args),
+            _ => failure(e, args).prefixed("--sweep"),
+        })?;
     progress.finish_and_clear();
-    let mut writer: Box<dyn Write> = match &args.out {
-        Some(path) => Box::new(create(path)?),
-        None => Box::new(std::io::BufWriter::new(std::io::stdout().lock())),
-    };
-    writer
-        .write_all(table.csv.as_bytes())
-        .and_then(|()| writer.flush())
-        .map_err(|e| output_error("the CSV", &e))?;
-    eprintln!(
-        "{} runs on {} threads in {:.2} s ({} derivation), {} failed",
-        table.runs,
-        std::thread::available_parallelism().map_or(1, usize::from),
-        started.elapsed().as_secs_f64(),
-        analysis.derivations(),
-        table.failed
-    );
+    eprintln!("{}", table.summary_line());
     if let Some(path) = &args.out {
         eprintln!("wrote {}", path.display());
     }
@@ -351,21 +270,10 @@ fn sweep(
     })
 }
 
-fn create(path: &Path) -> Result<std::io::BufWriter<std::fs::File>, Failure> {
-    std::fs::File::create(path)
-        .map(std::io::BufWriter::new)
-        .map_err(|e| Failure::input(format!("cannot create `{}`: {e}", path.display())))
-}
-
 fn bar(template: &str) -> ProgressBar {
     let bar = ProgressBar::new(1000);
     if let Ok(style) = ProgressStyle::with_template(template) {
         bar.set_style(style);
     }
     bar
-}
-
-fn stem(path: &Path) -> String {
-    path.file_stem()
-        .map_or_else(String::new, |s| s.to_string_lossy().into_owned())
 }

@@ -16,45 +16,7 @@ impl Checker {
         span: Span,
     ) {
         let kind = match spec {
-            ast::ConstraintSpec::Equation { lhs, rhs } => {
-                let place = Place::motion("a constraint");
-                let lhs = self.expr(lhs, Type::Scalar, place);
-                let rhs = self.expr(rhs, Type::Scalar, place);
-                match (lhs, rhs) {
-                    (Some(lhs), Some(rhs))
-                        if self.level_of(&lhs).max(self.level_of(&rhs)) < Level::Configuration =>
-                    {
-                        self.diagnostics.push(
-                            Diagnostic::new(DiagnosticKind::ConstraintWithoutCoordinates, lhs.span.to(rhs.span))
-                                .with_help(
-                                    "A constraint restricts the motion, so it must involve a coordinate; \
-                                     a fixed relation among parameters belongs in `constants`.",
-                                ),
-                        );
-                        None
-                    }
-                    (Some(lhs), Some(rhs)) => match (rate_degree(&lhs), rate_degree(&rhs)) {
-                        (Some(0), Some(0)) => Some(ConstraintKind::Holonomic { lhs, rhs }),
-                        (Some(a), Some(b)) if a <= 1 && b <= 1 => {
-                            Some(ConstraintKind::Velocity { lhs, rhs })
-                        }
-                        _ => {
-                            self.diagnostics.push(
-                                Diagnostic::new(
-                                    DiagnosticKind::WrongDegreeInRates {
-                                        place: "a velocity constraint",
-                                        requirement: "linear",
-                                    },
-                                    lhs.span.to(rhs.span),
-                                )
-                                .with_help("Write it as a(q, t)·q' + b(q, t) = 0, with no products or functions of rates."),
-                            );
-                            None
-                        }
-                    },
-                    _ => None,
-                }
-            }
+            ast::ConstraintSpec::Equation { lhs, rhs } => self.equation_constraint(lhs, rhs),
             ast::ConstraintSpec::Rolling { body, contact } => {
                 let body = self.lookup(body, NameKind::Body);
                 let contact = self.lookup(contact, NameKind::Point);
@@ -83,6 +45,57 @@ impl Checker {
                 }
             }
         };
+        self.add_constraint(kind, ident, span);
+    }
+
+    /// `lhs = rhs`: holonomic when neither side has a rate, a velocity constraint when both
+    /// are linear in the rates; refused without a coordinate or with rates beyond linear.
+    fn equation_constraint(&mut self, lhs: &ast::Expr, rhs: &ast::Expr) -> Option<ConstraintKind> {
+        let place = Place::motion("a constraint");
+        let lhs = self.expr(lhs, Type::Scalar, place);
+        let rhs = self.expr(rhs, Type::Scalar, place);
+        match (lhs, rhs) {
+            (Some(lhs), Some(rhs))
+                if self.level_of(&lhs).max(self.level_of(&rhs)) < Level::Configuration =>
+            {
+                self.diagnostics.push(
+                    Diagnostic::new(
+                        DiagnosticKind::ConstraintWithoutCoordinates,
+                        lhs.span.to(rhs.span),
+                    )
+                    .with_help(
+                        "A constraint restricts the motion, so it must involve a coordinate; \
+                             a fixed relation among parameters belongs in `constants`.",
+                    ),
+                );
+                None
+            }
+            (Some(lhs), Some(rhs)) => match (rate_degree(&lhs), rate_degree(&rhs)) {
+                (Some(0), Some(0)) => Some(ConstraintKind::Holonomic { lhs, rhs }),
+                (Some(a), Some(b)) if a <= 1 && b <= 1 => {
+                    Some(ConstraintKind::Velocity { lhs, rhs })
+                }
+                _ => {
+                    self.diagnostics.push(
+                        Diagnostic::new(
+                            DiagnosticKind::WrongDegreeInRates {
+                                place: "a velocity constraint",
+                                requirement: "linear",
+                            },
+                            lhs.span.to(rhs.span),
+                        )
+                        .with_help("Write it as a(q, t)·q' + b(q, t) = 0, with no products or functions of rates."),
+                    );
+                    None
+                }
+            },
+            _ => None,
+        }
+    }
+
+    /// Declares a checked constraint (under its name, when it has one), or poisons the name
+    /// of one that failed so that later uses are not reported again.
+    fn add_constraint(&mut self, kind: Option<ConstraintKind>, ident: Option<&Ident>, span: Span) {
         match (kind, ident) {
             (Some(kind), Some(ident)) => {
                 let target = Target::Constraint(ConstraintId(id(self.model.constraints.len())));
