@@ -66,6 +66,7 @@ pub mod csv;
 mod equilibria;
 mod error;
 mod figure;
+mod modes;
 mod reactions;
 mod runs;
 mod simulate;
