@@ -200,3 +200,63 @@ fn animate_writes_a_page_and_refuses_bad_input() {
     assert_eq!(o.status.code(), Some(5), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn solve_puts_the_figure_at_the_top_and_links_the_animation() {
+    let dir = std::env::temp_dir().join(format!("lagrange-solve-figure-{}", std::process::id()));
+    let model = "examples/simple-pendulum.lag";
+    let figure = stdout(&lagrange(&["draw", model]));
+    for format in ["md", "tex", "json"] {
+        let out = dir.join(format);
+        let o = lagrange(&[
+            "solve",
+            model,
+            "--format",
+            format,
+            "--out",
+            &out.to_string_lossy(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{format}: {}", stderr(&o));
+        let document = std::fs::read_to_string(out.join(format!("simple-pendulum.{format}")))
+            .expect("the document");
+        match format {
+            "md" => {
+                let top = document
+                    .find("## The system\n\n")
+                    .expect("the first section")
+                    + 15;
+                assert!(
+                    document[top..].starts_with(
+                        "```{figure} simple-pendulum.svg\nThe system at its initial state.\n```\n\n\
+                         [The motion, animated (opens in a browser)](simple-pendulum.html)\n"
+                    ),
+                    "{document}"
+                );
+                let svg = std::fs::read_to_string(out.join("simple-pendulum.svg")).expect("svg");
+                assert_eq!(svg, figure);
+                let page = std::fs::read_to_string(out.join("simple-pendulum.html")).expect("html");
+                assert!(page.starts_with("<!DOCTYPE html>") && page.contains("point-P"));
+            }
+            "tex" => {
+                let at = document.find("\\includegraphics").expect("a figure");
+                assert!(document[at..]
+                    .starts_with("\\includegraphics[width=0.5\\textwidth]{simple-pendulum.png}"));
+                assert!(at < document.find("Generalized coordinates").expect("the text"));
+                let png = std::fs::read(out.join("simple-pendulum.png")).expect("png");
+                assert!(png.starts_with(b"\x89PNG"));
+            }
+            _ => {
+                let value: serde_json::Value = serde_json::from_str(&document).expect("JSON");
+                let blocks = &value["report"]["sections"][0]["blocks"];
+                assert_eq!(blocks[0]["kind"], "figure");
+                assert_eq!(blocks[0]["path"], "simple-pendulum.svg");
+                assert_eq!(blocks[1]["kind"], "link");
+                assert_eq!(blocks[1]["path"], "simple-pendulum.html");
+                for file in ["simple-pendulum.svg", "simple-pendulum.html"] {
+                    assert!(out.join(file).is_file(), "{file} written");
+                }
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
