@@ -30,18 +30,29 @@ pub fn animation(
     frames: &[Configuration],
     options: &AnimationOptions,
 ) -> Result<String, DrawError> {
-    let mut scenes = Vec::with_capacity(frames.len());
-    let mut plane = None;
-    let mut size = None;
-    for (k, at) in frames.iter().enumerate() {
-        let sampler = Sampler::new(model, at.clone())?;
-        // Symbols keep the first frame's sizes: a block does not breathe as the system moves.
-        let (scene, p) = build::scene(&sampler, size)?;
-        if k == 0 {
-            plane = p;
-            size = Some(scene.size);
-        }
-        scenes.push(scene);
+    let Some((first, rest)) = frames.split_first() else {
+        return Ok(html(
+            model,
+            frames,
+            &[],
+            &options
+                .traces
+                .iter()
+                .map(|name| (name.clone(), Vec::new()))
+                .collect::<Vec<_>>(),
+            ((0.0, 0.0), (100.0, 100.0)),
+            &view::fit(&Scene::default(), None),
+            options,
+        ));
+    };
+    let (scene, plane) = build::scene(&Sampler::new(model, first.clone())?, None)?;
+    // Symbols keep the first frame's sizes: a block does not breathe as the system moves.
+    let size = Some(scene.size);
+    let mut scenes = vec![scene];
+    for scene in in_parallel(rest, |at| {
+        Ok(build::scene(&Sampler::new(model, at.clone())?, size)?.0)
+    }) {
+        scenes.push(scene?);
     }
     let all = Scene {
         items: scenes
@@ -52,7 +63,7 @@ pub fn animation(
         unmarked: Vec::new(),
     };
     let view = view::fit(&all, plane);
-    let written: Vec<svg::Written> = scenes.iter().map(|s| svg::write(s, &view)).collect();
+    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::write(s, &view));
     let mut lo = (f64::INFINITY, f64::INFINITY);
     let mut hi = (f64::NEG_INFINITY, f64::NEG_INFINITY);
     for w in &written {
@@ -76,6 +87,27 @@ pub fn animation(
         &view,
         options,
     ))
+}
+
+/// `f` of each item, in order, computed on as many threads as the machine has cores (at most
+/// 8): the frames of an animation are drawn independently of one another.
+fn in_parallel<T: Sync, U: Send>(items: &[T], f: impl Fn(&T) -> U + Sync) -> Vec<U> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+    if threads < 2 || items.len() < 2 {
+        return items.iter().map(&f).collect();
+    }
+    let chunk = items.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = items
+            .chunks(chunk)
+            .map(|part| scope.spawn(|| part.iter().map(&f).collect::<Vec<U>>()))
+            .collect();
+        handles
+            .into_iter()
+            // A panic in a worker is a bug of the drawing; it is passed on as it is.
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
 }
 
 /// Where point `name` is drawn in each scene (frames where it is not drawn are skipped).
