@@ -30,18 +30,29 @@ pub fn animation(
     frames: &[Configuration],
     options: &AnimationOptions,
 ) -> Result<String, DrawError> {
-    let mut scenes = Vec::with_capacity(frames.len());
-    let mut plane = None;
-    let mut size = None;
-    for (k, at) in frames.iter().enumerate() {
-        let sampler = Sampler::new(model, at.clone())?;
-        // Symbols keep the first frame's sizes: a block does not breathe as the system moves.
-        let (scene, p) = build::scene(&sampler, size)?;
-        if k == 0 {
-            plane = p;
-            size = Some(scene.size);
-        }
-        scenes.push(scene);
+    let Some((first, rest)) = frames.split_first() else {
+        return Ok(html(
+            model,
+            frames,
+            &[],
+            &options
+                .traces
+                .iter()
+                .map(|name| (name.clone(), Vec::new()))
+                .collect::<Vec<_>>(),
+            ((0.0, 0.0), (100.0, 100.0)),
+            &view::fit(&Scene::default(), None),
+            options,
+        ));
+    };
+    let (scene, plane) = build::scene(&Sampler::new(model, first.clone())?, None)?;
+    // Symbols keep the first frame's sizes: a block does not breathe as the system moves.
+    let size = Some(scene.size);
+    let mut scenes = vec![scene];
+    for scene in in_parallel(rest, |at| {
+        Ok(build::scene(&Sampler::new(model, at.clone())?, size)?.0)
+    }) {
+        scenes.push(scene?);
     }
     let all = Scene {
         items: scenes
@@ -52,7 +63,7 @@ pub fn animation(
         unmarked: Vec::new(),
     };
     let view = view::fit(&all, plane);
-    let written: Vec<svg::Written> = scenes.iter().map(|s| svg::write(s, &view)).collect();
+    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::write(s, &view));
     let mut lo = (f64::INFINITY, f64::INFINITY);
     let mut hi = (f64::NEG_INFINITY, f64::NEG_INFINITY);
     for w in &written {
@@ -76,6 +87,27 @@ pub fn animation(
         &view,
         options,
     ))
+}
+
+/// `f` of each item, in order, computed on as many threads as the machine has cores (at most
+/// 8): the frames of an animation are drawn independently of one another.
+fn in_parallel<T: Sync, U: Send>(items: &[T], f: impl Fn(&T) -> U + Sync) -> Vec<U> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(8));
+    if threads < 2 || items.len() < 2 {
+        return items.iter().map(&f).collect();
+    }
+    let chunk = items.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = items
+            .chunks(chunk)
+            .map(|part| scope.spawn(|| part.iter().map(&f).collect::<Vec<U>>()))
+            .collect();
+        handles
+            .into_iter()
+            // A panic in a worker is a bug of the drawing; it is passed on as it is.
+            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
 }
 
 /// Where point `name` is drawn in each scene (frames where it is not drawn are skipped).
@@ -160,15 +192,50 @@ fn tenth(x: f64) -> String {
     }
 }
 
+/// The page: the frames, the coordinates' values, the traces, and the script that plays them.
 fn html(
     model: &model::Model,
     frames: &[Configuration],
     written: &[svg::Written],
     traces: &[(String, Vec<Pt>)],
-    (lo, hi): (Pt, Pt),
+    bounds: (Pt, Pt),
     view: &view::View,
     options: &AnimationOptions,
 ) -> String {
+    let (template, data) = frame_data(written);
+    let names: Vec<String> = model
+        .coordinates()
+        .iter()
+        .map(|c| js_string(&crate::names::symbol(&c.name.name)))
+        .collect();
+    let script = Script {
+        template,
+        data,
+        values: values(frames),
+        names: format!("[{}]", names.join(",")),
+        last: frames.len().saturating_sub(1),
+    };
+    page(&options.title, bounds, view, &trace_paths(traces), &script)
+}
+
+/// The data the page's script reads, each a JavaScript literal.
+struct Script {
+    /// The first frame's markup cut at its numbers (`T`).
+    template: String,
+    /// Each frame: its numbers, or its whole markup when it does not fit the template (`F`).
+    data: String,
+    /// Each frame's time and coordinates (`Q`).
+    values: String,
+    /// The coordinates' symbols (`N`).
+    names: String,
+    /// The last frame's index (the slider's end).
+    last: usize,
+}
+
+/// The template (the first frame's markup cut at its numbers) and every frame as its numbers
+/// to a tenth of a pixel, or as its markup when it differs from the template in more than
+/// its numbers.
+fn frame_data(written: &[svg::Written]) -> (String, String) {
     let (template, _) = written.first().map(|w| split(&w.inner)).unwrap_or_default();
     let mut data = String::from("[");
     for (k, w) in written.iter().enumerate() {
@@ -177,34 +244,34 @@ fn html(
             data.push(',');
         }
         if pieces == template {
-            data.push('[');
             let list: Vec<String> = numbers.iter().map(|x| tenth(*x)).collect();
-            data.push_str(&list.join(","));
-            data.push(']');
+            let _ = write!(data, "[{}]", list.join(","));
         } else {
             data.push_str(&js_string(&w.inner));
         }
     }
     data.push(']');
     let pieces: Vec<String> = template.iter().map(|p| js_string(p)).collect();
-    let template = format!("[{}]", pieces.join(","));
-    let names: Vec<String> = model
-        .coordinates()
+    (format!("[{}]", pieces.join(",")), data)
+}
+
+/// Each frame's time and coordinates, to four decimals.
+fn values(frames: &[Configuration]) -> String {
+    let rows: Vec<String> = frames
         .iter()
-        .map(|c| js_string(&crate::names::symbol(&c.name.name)))
+        .map(|f| {
+            let row: Vec<String> = std::iter::once(f.time)
+                .chain(f.coordinates.iter().copied())
+                .map(|x| format!("{x:.4}"))
+                .collect();
+            format!("[{}]", row.join(","))
+        })
         .collect();
-    let mut values = String::from("[");
-    for (k, f) in frames.iter().enumerate() {
-        if k > 0 {
-            values.push(',');
-        }
-        let row: Vec<String> = std::iter::once(f.time)
-            .chain(f.coordinates.iter().copied())
-            .map(|x| format!("{x:.4}"))
-            .collect();
-        let _ = write!(values, "[{}]", row.join(","));
-    }
-    values.push(']');
+    format!("[{}]", rows.join(","))
+}
+
+/// The traced points' paths, dashed.
+fn trace_paths(traces: &[(String, Vec<Pt>)]) -> String {
     let mut paths = String::new();
     for (name, points) in traces {
         let list: Vec<String> = points
@@ -217,6 +284,17 @@ fn html(
             list.join(" ")
         );
     }
+    paths
+}
+
+/// The HTML page around the picture's box `(lo, hi)`, its traces and its script's data.
+fn page(
+    title: &str,
+    (lo, hi): (Pt, Pt),
+    view: &view::View,
+    paths: &str,
+    script: &Script,
+) -> String {
     let (w, h) = (hi.0 - lo.0, hi.1 - lo.1);
     format!(
         r#"<!DOCTYPE html>
@@ -234,26 +312,17 @@ fn html(
 const T={template};
 const F={data};
 const Q={values};
-const N=[{names}];
-const g=document.getElementById("frame"),s=document.getElementById("time"),b=document.getElementById("play"),v=document.getElementById("values");
-function markup(k){{const f=F[k];if(typeof f==="string")return f;let o="";for(let i=0;i<T.length;i++){{o+=T[i];if(i<f.length)o+=f[i];}}return o;}}
-function show(k){{g.innerHTML=markup(k);s.value=k;const q=Q[k];let t="t = "+q[0].toFixed(3)+" s";for(let i=0;i<N.length;i++)t+="   "+N[i]+" = "+q[i+1].toFixed(4);v.textContent=t;}}
-let k=0,playing=true,start=null;
-function tick(now){{if(playing){{if(start===null)start=now-1000*(Q[k][0]-Q[0][0]);const t=Q[0][0]+(now-start)/1000;while(k<Q.length-1&&Q[k+1][0]<=t)k++;if(k>=Q.length-1){{k=0;start=null;}}show(k);}}requestAnimationFrame(tick);}}
-b.onclick=()=>{{playing=!playing;start=null;b.textContent=playing?"pause":"play";}};
-s.oninput=()=>{{playing=false;b.textContent="play";k=Number(s.value);show(k);}};
-show(0);requestAnimationFrame(tick);
-</script>
+const N={names};
+{PLAYER}</script>
 </body></html>
 "#,
-        title = options.title.replace('<', "&lt;"),
+        title = title.replace('<', "&lt;"),
         slider = w.max(200.0).round(),
         x = svg::number(lo.0),
         y = svg::number(lo.1),
         w = svg::number(w),
         h = svg::number(h),
         style = svg::style(),
-        last = frames.len().saturating_sub(1),
         scale = view.scale,
         ox = view.origin.0,
         oy = view.origin.1,
@@ -263,9 +332,26 @@ show(0);requestAnimationFrame(tick);
         v0 = view.v[0],
         v1 = view.v[1],
         v2 = view.v[2],
-        names = names.join(","),
+        template = script.template,
+        data = script.data,
+        values = script.values,
+        names = script.names,
+        last = script.last,
     )
 }
+
+/// The script that plays the frames: it rebuilds a frame's markup from the template and its
+/// numbers, shows the time and the coordinates, follows the clock while playing, and lets the
+/// slider choose a frame (which pauses).
+const PLAYER: &str = r#"const g=document.getElementById("frame"),s=document.getElementById("time"),b=document.getElementById("play"),v=document.getElementById("values");
+function markup(k){const f=F[k];if(typeof f==="string")return f;let o="";for(let i=0;i<T.length;i++){o+=T[i];if(i<f.length)o+=f[i];}return o;}
+function show(k){g.innerHTML=markup(k);s.value=k;const q=Q[k];let t="t = "+q[0].toFixed(3)+" s";for(let i=0;i<N.length;i++)t+="   "+N[i]+" = "+q[i+1].toFixed(4);v.textContent=t;}
+let k=0,playing=true,start=null;
+function tick(now){if(playing){if(start===null)start=now-1000*(Q[k][0]-Q[0][0]);const t=Q[0][0]+(now-start)/1000;while(k<Q.length-1&&Q[k+1][0]<=t)k++;if(k>=Q.length-1){k=0;start=null;}show(k);}requestAnimationFrame(tick);}
+b.onclick=()=>{playing=!playing;start=null;b.textContent=playing?"pause":"play";};
+s.oninput=()=>{playing=false;b.textContent="play";k=Number(s.value);show(k);};
+show(0);requestAnimationFrame(tick);
+"#;
 
 #[cfg(test)]
 mod tests {

@@ -63,6 +63,25 @@ impl Obstacle {
             Obstacle::Segment(a, b, half) => segment_meets(a, b, &r.grown(half)),
         }
     }
+
+    /// The obstacle's bounding box, its stroke's half width included: an obstacle meets no
+    /// rectangle its box does not reach.
+    fn bounds(&self) -> ((f64, f64), (f64, f64)) {
+        match *self {
+            Obstacle::Circle((cx, cy), radius) => {
+                ((cx - radius, cy - radius), (cx + radius, cy + radius))
+            }
+            Obstacle::Segment(a, b, half) => (
+                (a.0.min(b.0) - half, a.1.min(b.1) - half),
+                (a.0.max(b.0) + half, a.1.max(b.1) + half),
+            ),
+        }
+    }
+}
+
+/// Whether the box `(lo, hi)` reaches `r` (edges included).
+fn reaches((lo, hi): ((f64, f64), (f64, f64)), r: &Rect) -> bool {
+    lo.0 <= r.x + r.w && r.x <= hi.0 && lo.1 <= r.y + r.h && r.y <= hi.1
 }
 
 /// Whether segment `a`–`b` meets rectangle `r` (Liang–Barsky clipping).
@@ -115,10 +134,35 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
         })
         .fold(0.0, f64::max);
     for request in requests {
-        let best = candidates(request)
-            .filter(|r| !placed.iter().any(|p| p.overlaps(r)))
-            .map(|r| (obstacles.iter().filter(|o| o.meets(&r)).count(), r))
-            .min_by_key(|(hits, _)| *hits);
+        // Only the obstacles near the candidates can touch one: the others are not counted.
+        let region = candidates(request).reduce(|a, b| {
+            let (x, y) = (a.x.min(b.x), a.y.min(b.y));
+            Rect {
+                x,
+                y,
+                w: (a.x + a.w).max(b.x + b.w) - x,
+                h: (a.y + a.h).max(b.y + b.h) - y,
+            }
+        });
+        let near: Vec<(_, &Obstacle)> = obstacles
+            .iter()
+            .map(|o| (o.bounds(), o))
+            .filter(|(b, _)| region.is_some_and(|r| reaches(*b, &r)))
+            .collect();
+        // The first candidate touching fewest obstacles; a clear one ends the search.
+        let mut best: Option<(usize, Rect)> = None;
+        for r in candidates(request).filter(|r| !placed.iter().any(|p| p.overlaps(r))) {
+            let hits = near
+                .iter()
+                .filter(|(b, o)| reaches(*b, &r) && o.meets(&r))
+                .count();
+            if best.is_none_or(|(fewest, _)| hits < fewest) {
+                best = Some((hits, r));
+            }
+            if hits == 0 {
+                break;
+            }
+        }
         let rect = match best {
             Some((_, r)) => r,
             None => free_row(request, &placed, bottom),

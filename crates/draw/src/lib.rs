@@ -33,6 +33,7 @@ pub mod layout;
 mod loads;
 mod marks;
 mod names;
+mod raster;
 mod sample;
 mod scene;
 mod svg;
@@ -41,6 +42,7 @@ mod view;
 pub use animate::{animation, AnimationOptions};
 pub use layout::Rect;
 pub use names::{symbol, text};
+pub use raster::RasterError;
 pub use sample::Configuration;
 pub use scene::{ArcKind, ArrowKind, Item, Scene, P3};
 pub use view::View;
@@ -80,6 +82,21 @@ pub struct Figure {
     pub labels: Vec<(String, Rect)>,
     /// The labels that touch the drawing because no clear place was found near their point.
     pub touching: Vec<String>,
+    /// What was drawn, for [`Figure::png`].
+    shapes: Vec<raster::Shape>,
+    /// The page box of the picture.
+    bounds: ((f64, f64), (f64, f64)),
+}
+
+impl Figure {
+    /// The figure as a PNG image, `scale` image pixels per SVG pixel (2 for print).
+    ///
+    /// # Errors
+    /// [`RasterError::Size`] when the image would be empty or more than 16384 pixels on a
+    /// side; [`RasterError::Encode`] if the encoder fails.
+    pub fn png(&self, scale: f64) -> Result<Vec<u8>, RasterError> {
+        raster::png(&self.shapes, self.bounds, scale)
+    }
 }
 
 /// The figure of `model` at `at`.
@@ -98,5 +115,7 @@ pub fn figure(model: &model::Model, at: Configuration) -> Result<Figure, DrawErr
         view,
         labels: written.labels,
         touching: written.touching,
+        shapes: written.shapes,
+        bounds: written.bounds,
     })
 }

@@ -8,6 +8,7 @@
 use std::fmt::Write;
 
 use crate::layout::{place, Obstacle, Rect, Request};
+use crate::raster::{Paint, Shape};
 use crate::sample::{add, norm, sub};
 use crate::scene::{ArcKind, ArrowKind, Item, Scene, P3};
 use crate::view::View;
@@ -38,6 +39,8 @@ pub(crate) struct Written {
     pub inner: String,
     /// The page box around the drawing and its labels, margin included.
     pub bounds: (Pt, Pt),
+    /// What was drawn, in order, for a raster ([`crate::raster`]).
+    pub shapes: Vec<Shape>,
 }
 
 /// The style sheet of the figures.
@@ -59,6 +62,7 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
         labels: Vec::new(),
         ids: Vec::new(),
         size: scene.size,
+        shapes: Vec::new(),
     };
     for item in &scene.items {
         w.item(item);
@@ -90,6 +94,11 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
             f(r.h),
             escape(&label.text)
         );
+        w.shapes.push(Shape::Text {
+            at: (r.x + 0.5 * r.w, r.y + r.h - 0.25 * FONT),
+            text: label.text.clone(),
+            colour: class_colour(label.class),
+        });
         boxes.push((label.id.clone(), *r));
         if w.obstacles.iter().any(|o| o.meets(r)) {
             touching.push(label.id.clone());
@@ -133,7 +142,20 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
         labels: boxes,
         touching,
         bounds: (lo, hi),
+        shapes: w.shapes,
     }
+}
+
+/// The colour the style sheet gives a label of this class.
+fn class_colour(class: &str) -> crate::raster::Colour {
+    let colour = match class {
+        "coordinate" => COORDINATE,
+        "force" => FORCE,
+        "body" => "#555",
+        "axis" => AXIS,
+        _ => INK,
+    };
+    crate::raster::colour(colour).unwrap_or([0x22, 0x22, 0x22])
 }
 
 const STYLE: &str = concat!(
@@ -214,6 +236,7 @@ struct Writer<'v> {
     labels: Vec<Label>,
     ids: Vec<String>,
     size: f64,
+    shapes: Vec<Shape>,
 }
 
 impl Writer<'_> {
@@ -252,6 +275,11 @@ impl Writer<'_> {
             f(b.0),
             f(b.1)
         );
+        self.shapes.push(Shape::Path {
+            runs: vec![vec![a, b]],
+            closed: false,
+            paint: Paint::from_attributes(attrs, false),
+        });
         self.obstacles.push(Obstacle::Segment(a, b, half));
     }
 
@@ -261,6 +289,11 @@ impl Writer<'_> {
             let _ = write!(d, "{}{} {}", if k == 0 { "" } else { " " }, f(p.0), f(p.1));
         }
         let _ = writeln!(self.body, r#"<polyline points="{d}" fill="none" {attrs}/>"#);
+        self.shapes.push(Shape::Path {
+            runs: vec![points.to_vec()],
+            closed: false,
+            paint: Paint::from_attributes(attrs, false),
+        });
         for pair in points.windows(2) {
             self.obstacles
                 .push(Obstacle::Segment(pair[0], pair[1], half));
@@ -273,6 +306,11 @@ impl Writer<'_> {
             let _ = write!(d, "{}{} {}", if k == 0 { "" } else { " " }, f(p.0), f(p.1));
         }
         let _ = writeln!(self.body, r#"<polygon points="{d}" {attrs}/>"#);
+        self.shapes.push(Shape::Path {
+            runs: vec![points.to_vec()],
+            closed: true,
+            paint: Paint::from_attributes(attrs, true),
+        });
         let n = points.len();
         for k in 0..n {
             self.obstacles
@@ -288,6 +326,11 @@ impl Writer<'_> {
             f(c.1),
             f(r)
         );
+        self.shapes.push(Shape::Circle {
+            centre: c,
+            radius: r,
+            paint: Paint::from_attributes(attrs, true),
+        });
     }
 
     fn item(&mut self, item: &Item) {
@@ -463,12 +506,19 @@ impl Writer<'_> {
         // animation give equal counts despite rounding.
         let n = ((len * 100.0).round() / 800.0).floor() as usize;
         let mut d = String::new();
+        let mut runs = Vec::with_capacity(n + 1);
         for k in 0..=n {
             let s = k as f64 * len / n.max(1) as f64;
             let p = (a.0 + ux * s, a.1 + uy * s);
             let q = (p.0 + 7.0 * side.0 - 5.0 * ux, p.1 + 7.0 * side.1 - 5.0 * uy);
             let _ = write!(d, "M{} {}L{} {}", f(p.0), f(p.1), f(q.0), f(q.1));
+            runs.push(vec![p, q]);
         }
+        self.shapes.push(Shape::Path {
+            runs,
+            closed: false,
+            paint: Paint::from_attributes(&format!(r#"stroke="{INK}" stroke-width="1""#), false),
+        });
         let _ = writeln!(
             self.body,
             r#"<path d="{d}" class="hatch" stroke="{INK}" stroke-width="1"/>"#
@@ -629,6 +679,11 @@ impl Writer<'_> {
             f(r.0),
             f(r.1)
         );
+        self.shapes.push(Shape::Path {
+            runs: vec![vec![tip, l, r]],
+            closed: true,
+            paint: Paint::from_attributes(&format!(r#"fill="{colour}""#), true),
+        });
         self.obstacles.push(Obstacle::Segment(back, tip, 4.0));
     }
 

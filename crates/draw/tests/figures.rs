@@ -289,3 +289,52 @@ fn a_wrong_configuration_is_refused() {
     );
     assert!(e.is_err());
 }
+
+#[test]
+fn the_png_is_the_svg_painted() {
+    let model = load("simple-pendulum.lag");
+    let f = figure(&model, vec![0.5]);
+    let scale = 2.0;
+    let image = tiny_skia::Pixmap::decode_png(&f.png(scale).expect("painted")).expect("a PNG");
+    let view = numbers(&attribute(&f.svg, "<svg ", "viewBox"));
+    assert_eq!(
+        (image.width(), image.height()),
+        (
+            (view[2] * scale).ceil() as u32,
+            (view[3] * scale).ceil() as u32
+        )
+    );
+    // The pixel of an image point (x, y) in SVG pixels.
+    let pixel = |x: f64, y: f64| {
+        let (i, j) = (
+            ((x - view[0]) * scale) as u32,
+            ((y - view[1]) * scale) as u32,
+        );
+        let p = image.pixel(i, j).expect("inside the image");
+        [p.red(), p.green(), p.blue()]
+    };
+    let ink = |c: [u8; 3]| c.iter().all(|v| *v < 100);
+    let (bx, by) = drawn(&f.svg, "P");
+    assert!(
+        ink(pixel(bx, by)),
+        "the bob is painted: {:?}",
+        pixel(bx, by)
+    );
+    // The rod is painted halfway between the pivot and the bob.
+    let (ox, oy) = drawn(&f.svg, "O");
+    let middle = pixel(0.5 * (bx + ox), 0.5 * (by + oy));
+    assert!(ink(middle), "the rod is painted: {middle:?}");
+    assert_eq!(
+        pixel(view[0] + 1.0, view[1] + 1.0),
+        [255, 255, 255],
+        "white paper"
+    );
+    // Every label is painted inside its box: some pixel there is not white.
+    for b in boxes(&f.svg) {
+        let painted = (0..b[2] as usize).any(|dx| {
+            (0..b[3] as usize).any(|dy| pixel(b[0] + dx as f64, b[1] + dy as f64) != [255; 3])
+        });
+        assert!(painted, "the label in {b:?} is painted");
+    }
+    assert!(matches!(f.png(1e6), Err(draw::RasterError::Size { .. })));
+}

@@ -67,6 +67,7 @@ mod equilibria;
 mod error;
 pub mod expression;
 mod figure;
+mod modes;
 mod reactions;
 mod runs;
 mod simulate;

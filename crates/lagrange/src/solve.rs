@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use report::document::{Document, Notation, Section};
+use report::document::{Block, Document, Notation, Section};
 use report::solution_simulation::{simulation_section, RunEnd, RunReport};
 
 use crate::simulate::{run_sampled, Ending, SimulationOptions};
@@ -15,12 +15,19 @@ use crate::{Analysis, Error};
 /// many, evenly spread, and the last).
 pub const PLOTTED_ROWS: usize = 5_000;
 
+/// Image pixels per SVG pixel of the figure of a LaTeX solution (PNG).
+pub const PNG_SCALE: f64 = 2.0;
+
+/// Frames per second of simulated time of a solution's animation.
+pub const ANIMATION_FPS: f64 = 30.0;
+
 /// Where the solution's figures go.
 #[derive(Debug, Clone)]
 pub struct Figures {
     /// The directory (beside the report).
     pub directory: PathBuf,
-    /// The file name's stem (`7.1-cart-pendulum` → `7.1-cart-pendulum-motion.svg`).
+    /// The file name's stem (`7.1-cart-pendulum` → `7.1-cart-pendulum.svg` for the system,
+    /// `7.1-cart-pendulum.html` for its animation, `7.1-cart-pendulum-motion.svg` for the plots).
     pub stem: String,
     /// `svg`, or `png` for LaTeX (which `pdflatex` cannot include as SVG).
     pub extension: &'static str,
@@ -36,7 +43,8 @@ pub struct Solution {
 }
 
 impl Analysis {
-    /// The solution; `figures` says where the plots go (none without it).
+    /// The solution; `figures` says where the figure of the system, its animation and the
+    /// plots go (none without it).
     ///
     /// # Errors
     /// As [`Analysis::equations`]: without equations of motion there is no solution. The
@@ -51,6 +59,9 @@ impl Analysis {
             (document.sections.first_mut(), self.inputs_sentence())
         {
             section.paragraph(sentence);
+        }
+        if let (Some(figures), Some(section)) = (figures, document.sections.first_mut()) {
+            self.figure_part(figures, section);
         }
         let initial = self.initial_state().ok();
         match self.equilibria() {
@@ -116,6 +127,56 @@ impl Analysis {
             object.insert("report".into(), solution.document.to_json());
         }
         Ok(value)
+    }
+
+    /// The exercise's figure at the top of the first section, written beside the document
+    /// (`STEM.svg`, or `STEM.png` for LaTeX), and for an SVG document with a `simulate`
+    /// statement the animation of the motion (`STEM.html`), linked. What cannot be drawn
+    /// or written is said in the section instead.
+    fn figure_part(&self, figures: &Figures, section: &mut Section) {
+        let mut blocks = Vec::new();
+        let file = format!("{}.{}", figures.stem, figures.extension);
+        let written = self
+            .figure(0.0)
+            .map_err(|e| e.to_string())
+            .and_then(|figure| {
+                let bytes = if figures.extension == "png" {
+                    figure.png(PNG_SCALE).map_err(|e| e.to_string())?
+                } else {
+                    figure.svg.into_bytes()
+                };
+                std::fs::write(figures.directory.join(&file), bytes)
+                    .map_err(|e| format!("cannot write `{file}`: {e}"))
+            });
+        blocks.push(match written {
+            Ok(()) => Block::Figure {
+                path: file,
+                caption: "The system at its initial state.".into(),
+                width: 50,
+            },
+            Err(why) => Block::Paragraph(format!("The figure could not be drawn: {why}.")),
+        });
+        let simulated = self
+            .source()
+            .is_some_and(|s| s.model.simulation().is_some());
+        if figures.extension == "svg" && simulated {
+            let file = format!("{}.html", figures.stem);
+            let written = self
+                .animation(None, ANIMATION_FPS, &[])
+                .map_err(|e| e.to_string())
+                .and_then(|page| {
+                    std::fs::write(figures.directory.join(&file), page)
+                        .map_err(|e| format!("cannot write `{file}`: {e}"))
+                });
+            blocks.push(match written {
+                Ok(()) => Block::Link {
+                    path: file,
+                    text: "The motion, animated (opens in a browser)".into(),
+                },
+                Err(why) => Block::Paragraph(format!("The motion could not be animated: {why}.")),
+            });
+        }
+        section.blocks.splice(0..0, blocks);
     }
 
     /// The "Simulation" section: the model's own settings, run once.

@@ -166,3 +166,96 @@ fn the_animation_moves_the_bob_as_the_simulation_does_and_stays_small() {
     }
     assert!(seen.windows(2).all(|w| w[0] != w[1]), "the frames differ");
 }
+
+/// The values rows of an animation's page: the time, then each coordinate.
+fn values(html: &str) -> Vec<Vec<f64>> {
+    let start = html.find("\nconst Q=").expect("the values") + 9;
+    let end = start + html[start..].find(";\n").expect("the end of the values");
+    serde_json::from_str(&html[start..end]).expect("JSON")
+}
+
+#[test]
+fn a_mode_animation_follows_the_mode_shape_at_its_frequency() {
+    let double = example("double-pendulum.lag");
+    let equilibria = double.equilibria().expect("equilibria");
+    let (rest, linear) = equilibria
+        .set
+        .equilibria
+        .iter()
+        .zip(&equilibria.linearized)
+        .find_map(|(e, l)| match l {
+            Ok(l) if l.stable == Some(true) => Some((e.values.clone(), l)),
+            _ => None,
+        })
+        .expect("the hanging equilibrium is stable");
+    assert_eq!(equilibria.rest.coordinates, ["theta1", "theta2"]);
+    for k in [1, 2] {
+        let omega = linear.omega_squared.as_ref().expect("ω²")[k - 1].sqrt();
+        let shape = &linear.modes[k - 1];
+        let html = double
+            .mode_animation(k, None, 30.0, &["P2".to_owned()])
+            .expect("animated");
+        // Three periods at 30 frames per second.
+        let rows = values(&html);
+        assert!(
+            (rows.len() as f64 - 3.0 * std::f64::consts::TAU / omega * 30.0).abs() <= 2.0,
+            "mode {k}: {} frames",
+            rows.len()
+        );
+        let first = &rows[0];
+        let amplitude = (first[1] - rest[0]) / shape[0];
+        assert!(amplitude.abs() > 0.01, "a visible amplitude: {amplitude}");
+        for i in [0, 7, 20, 33] {
+            let row = &rows[i];
+            let c = (omega * row[0]).cos();
+            for j in 0..2 {
+                let expected = rest[j] + amplitude * shape[j] * c;
+                assert!(
+                    (row[j + 1] - expected).abs() < 2e-4,
+                    "mode {k}, frame {i}, coordinate {j}: {} against {expected}",
+                    row[j + 1]
+                );
+            }
+        }
+        // The bob is drawn where the frame's coordinates put it (l1 = l2 = 1, y up).
+        let root = &html[html.find("<svg ").expect("the picture")..];
+        let scale = attribute(root, "<svg ", "data-scale");
+        let at = root.find("data-origin=\"").expect("origin") + 13;
+        let origin: Vec<f64> = root[at..at + root[at..].find('"').expect("quoted")]
+            .split(' ')
+            .map(|x| x.parse().expect("number"))
+            .collect();
+        let row = &rows[20];
+        let (t1, t2) = (row[1], row[2]);
+        let bob = (t1.sin() + t2.sin(), -t1.cos() - t2.cos());
+        let expected = (origin[0] + scale * bob.0, origin[1] - scale * bob.1);
+        let markup = frame(&html, 20);
+        let drawn = (
+            attribute(&markup, "id=\"point-P2\"", "cx"),
+            attribute(&markup, "id=\"point-P2\"", "cy"),
+        );
+        assert!(
+            (drawn.0 - expected.0).hypot(drawn.1 - expected.1) <= 1.0,
+            "mode {k}: P2 drawn at {drawn:?}, the model puts it at {expected:?}"
+        );
+    }
+    let none = double.mode_animation(3, None, 30.0, &[]);
+    assert!(
+        matches!(&none, Err(lagrange::Error::NotAvailable(m)) if m.contains("no mode 3")),
+        "{none:?}"
+    );
+}
+
+#[test]
+fn without_a_stable_equilibrium_there_is_no_mode() {
+    // A particle pushed away from the origin in proportion to its distance: one
+    // equilibrium, unstable.
+    let text = "coordinates x\nparameters m = 1, k = 2\nframe N\npoint P = x*N.x\n\
+                particle P mass m\nforce k*x*N.x at P\ninitial x = 0.1\n";
+    let unstable = Analysis::from_text(text).expect("a valid model");
+    let e = unstable.mode_animation(1, None, 30.0, &[]);
+    assert!(
+        matches!(&e, Err(lagrange::Error::NotAvailable(m)) if m.contains("no stable equilibrium")),
+        "{e:?}"
+    );
+}

@@ -114,6 +114,7 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
         Some(Ok(path)) => section.blocks.push(Block::Figure {
             path: path.clone(),
             caption: "Time histories, phase portraits and energy error of the run.".into(),
+            width: 90,
         }),
         Some(Err(error)) => {
             section.paragraph(format!("The plot could not be written: {error}."));

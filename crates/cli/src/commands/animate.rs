@@ -1,5 +1,6 @@
-//! `lagrange animate MODEL [--t-end T] [--fps N] [--trace P]… [--out FILE.html]`: the simulated
-//! motion as a self-contained HTML page that plays in a browser.
+//! `lagrange animate MODEL [--t-end T] [--fps N] [--trace P]… [--mode K] [--out FILE.html]`:
+//! the simulated motion, or the `K`-th linearized mode about a stable equilibrium, as a
+//! self-contained HTML page that plays in a browser.
 
 use std::path::PathBuf;
 
@@ -12,9 +13,13 @@ use crate::exit::{check_output, output_error, print, println, Exit, Failure};
 pub struct AnimateArgs {
     /// The model file (`.lag`).
     pub model: PathBuf,
-    /// End time (default: the model's `simulate to T`).
+    /// End time (default: the model's `simulate to T`; with `--mode`, three periods).
     #[arg(long)]
     pub t_end: Option<f64>,
+    /// Animate the K-th linearized mode (1 = the slowest) about the first stable equilibrium
+    /// instead of simulating: q(t) = q₀ + a φ_K cos(ω_K t).
+    #[arg(long, value_name = "K")]
+    pub mode: Option<usize>,
     /// Frames per second of simulated time.
     #[arg(long, default_value_t = 30.0)]
     pub fps: f64,
@@ -29,7 +34,7 @@ pub struct AnimateArgs {
     pub out: Option<PathBuf>,
 }
 
-/// Simulates, draws every frame, and prints or writes the page.
+/// Simulates (or follows a mode), draws every frame, and prints or writes the page.
 pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
     let path = args.model.as_path();
     if let Some(out) = &args.out {
@@ -51,9 +56,11 @@ pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
         )));
     }
     let analysis = super::load(path, &args.set)?;
-    let html = analysis
-        .animation(args.t_end, args.fps, &args.trace)
-        .map_err(|e| Failure::of(e, path))?;
+    let html = match args.mode {
+        None => analysis.animation(args.t_end, args.fps, &args.trace),
+        Some(k) => analysis.mode_animation(k, args.t_end, args.fps, &args.trace),
+    }
+    .map_err(|e| Failure::of(e, path))?;
     match &args.out {
         None => print(&html)?,
         Some(out) => {

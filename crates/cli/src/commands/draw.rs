@@ -1,5 +1,6 @@
-//! `lagrange draw MODEL [--at NAME=VALUE,…] [--out FILE.svg]`: the system drawn at its
-//! initial state (or the one given), as an SVG figure — printed, or written to a file.
+//! `lagrange draw MODEL [--at NAME=VALUE,…] [--out FILE.svg|FILE.png]`: the system drawn at
+//! its initial state (or the one given), as an SVG figure — printed, or written to a file, or
+//! as a PNG image.
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +17,8 @@ pub struct DrawArgs {
     /// inputs, and `t` for the time, e.g. `--at theta=0.3,x=0.1` (repeatable).
     #[arg(long, value_name = "NAME=VALUE,…", value_delimiter = ',')]
     pub at: Vec<String>,
-    /// Write the figure to this `.svg` file instead of printing it.
+    /// Write the figure to this `.svg` file (or `.png`, at twice the SVG's pixels) instead of
+    /// printing it.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
 }
@@ -24,18 +26,18 @@ pub struct DrawArgs {
 /// Draws the model and prints or writes the SVG.
 pub fn run(args: &DrawArgs) -> Result<Exit, Failure> {
     let path = args.model.as_path();
+    let png = args
+        .out
+        .as_deref()
+        .is_some_and(|out| extension_is(out, "png"));
     if let Some(out) = &args.out {
-        if !out
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("svg"))
-        {
+        if !png && !extension_is(out, "svg") {
             return Err(Failure::input(format!(
-                "--out {}: a figure is written as SVG; give a file name ending in .svg",
+                "--out {}: a figure is written as SVG or PNG; give a file name ending in .svg \
+                 or .png",
                 out.display()
             )));
         }
-    }
-    if let Some(out) = &args.out {
         // Before any work: the model file is never written over.
         check_output(out, path)?;
     }
@@ -51,9 +53,23 @@ pub fn run(args: &DrawArgs) -> Result<Exit, Failure> {
     let figure = analysis.figure(time).map_err(|e| Failure::of(e, path))?;
     match &args.out {
         None => print(&figure.svg)?,
-        Some(out) => write(out, &figure.svg)?,
+        Some(out) if png => {
+            let image = figure
+                .png(PNG_SCALE)
+                .map_err(|e| Failure::input(format!("--out {}: {e}", out.display())))?;
+            write(out, &image)?;
+        }
+        Some(out) => write(out, figure.svg.as_bytes())?,
     }
     Ok(Exit::Success)
+}
+
+/// Image pixels per SVG pixel of a PNG figure: sharp in print at the figure's size.
+pub const PNG_SCALE: f64 = 2.0;
+
+fn extension_is(path: &Path, extension: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(extension))
 }
 
 /// `t=VALUE` among the assignments is the time; the others are values.
@@ -78,7 +94,7 @@ fn split_time(items: &[String]) -> Result<(f64, Vec<String>), Failure> {
     Ok((time, rest))
 }
 
-fn write(out: &Path, svg: &str) -> Result<(), Failure> {
-    std::fs::write(out, svg).map_err(|e| output_error(&format!("`{}`", out.display()), &e))?;
+fn write(out: &Path, bytes: &[u8]) -> Result<(), Failure> {
+    std::fs::write(out, bytes).map_err(|e| output_error(&format!("`{}`", out.display()), &e))?;
     println(&format!("wrote {}", out.display()))
 }

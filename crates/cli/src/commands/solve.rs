@@ -36,6 +36,9 @@ pub fn run(
                 "svg"
             };
             check_output(&dir.join(format!("{stem}-motion.{extension}")), path)?;
+            // The figure of the system and its animation, at the top of the document.
+            check_output(&dir.join(format!("{stem}.{extension}")), path)?;
+            check_output(&dir.join(format!("{stem}.html")), path)?;
             check_output(&dir.join(format!("{stem}.{}", format.extension())), path)?;
             Some(Figures {
                 directory: dir.to_owned(),

@@ -31,7 +31,8 @@ impl Document {
                                 Cell::Math(m) => math(m),
                             }).collect::<Vec<_>>()).collect::<Vec<_>>(),
                         }),
-                        Block::Figure { path, caption } => json!({ "kind": "figure", "path": path, "caption": caption }),
+                        Block::Figure { path, caption, .. } => json!({ "kind": "figure", "path": path, "caption": caption }),
+                        Block::Link { path, text } => json!({ "kind": "link", "path": path, "text": text }),
                     })
                     .collect();
                 json!({ "title": s.title, "level": s.level, "blocks": blocks })

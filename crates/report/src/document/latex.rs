@@ -62,13 +62,26 @@ impl Document {
                         }
                         let _ = writeln!(out, "\\hline\n\\end{{tabular}}\n\\end{{center}}\n");
                     }
-                    Block::Figure { path, caption } => {
+                    Block::Figure {
+                        path,
+                        caption,
+                        width,
+                    } => {
                         let _ = writeln!(
                             out,
                             // Not a float: the figure stays in its section, where the text
                             // refers to it.
-                            "\\begin{{center}}\n\\includegraphics[width=0.9\\textwidth]{{{path}}}\n\\captionof*{{figure}}{{{}}}\n\\end{{center}}\n",
+                            "\\begin{{center}}\n\\includegraphics[width={}\\textwidth]{{{path}}}\n\\captionof*{{figure}}{{{}}}\n\\end{{center}}\n",
+                            f64::from(*width) / 100.0,
                             latex_text(caption)
+                        );
+                    }
+                    Block::Link { path, text } => {
+                        let _ = writeln!(
+                            out,
+                            "{}: \\texttt{{{}}}\n",
+                            latex_text(text),
+                            latex_text(path)
                         );
                     }
                 }

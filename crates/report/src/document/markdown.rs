@@ -36,8 +36,11 @@ impl Document {
                         }
                         out.push('\n');
                     }
-                    Block::Figure { path, caption } => {
+                    Block::Figure { path, caption, .. } => {
                         let _ = writeln!(out, "```{{figure}} {path}\n{caption}\n```\n");
+                    }
+                    Block::Link { path, text } => {
+                        let _ = writeln!(out, "[{text}]({path})\n");
                     }
                 }
             }

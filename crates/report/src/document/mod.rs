@@ -185,9 +185,18 @@ pub enum Block {
         path: String,
         /// What it shows.
         caption: String,
+        /// Its width in print, in percent of the text's width.
+        width: u8,
     },
     /// A remark worth noticing, like the seed's *Obs.*
     Remark(String),
+    /// A file written beside the document that a reader opens on its own (an animation).
+    Link {
+        /// The file name, relative to the document.
+        path: String,
+        /// What it is.
+        text: String,
+    },
 }
 
 /// A titled section.

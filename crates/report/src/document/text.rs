@@ -40,8 +40,11 @@ impl Document {
                     Block::Table { header, rows } => {
                         out.push_str(&text_table(header, rows));
                     }
-                    Block::Figure { path, caption } => {
+                    Block::Figure { path, caption, .. } => {
                         let _ = writeln!(out, "  [figure: {caption} — {path}]");
+                    }
+                    Block::Link { path, text } => {
+                        let _ = writeln!(out, "{text}: {path}");
                     }
                 }
                 out.push('\n');
