@@ -50,16 +50,7 @@ impl Analysis {
         fps: f64,
         traces: &[String],
     ) -> Result<String, Error> {
-        let Some(source) = self.source() else {
-            return Err(Error::NotAvailable(
-                "a system built in code has no model to draw".to_owned(),
-            ));
-        };
-        if !(fps.is_finite() && fps > 0.0) {
-            return Err(Error::NotAvailable(format!(
-                "a frame rate must be a positive number, not {fps}"
-            )));
-        }
+        let source = self.animated_source(fps)?;
         let options = crate::SimulationOptions {
             t_end,
             output_step: Some(1.0 / fps),
@@ -83,6 +74,22 @@ impl Analysis {
         self.animate_frames(source, frames, traces, title(source, None))
     }
 
+    /// The model to animate at `fps` frames per second: refused for a system built in code
+    /// (no model to draw) or a frame rate that is not a positive number.
+    fn animated_source(&self, fps: f64) -> Result<&Source, Error> {
+        let Some(source) = self.source() else {
+            return Err(Error::NotAvailable(
+                "a system built in code has no model to draw".to_owned(),
+            ));
+        };
+        if !(fps.is_finite() && fps > 0.0) {
+            return Err(Error::NotAvailable(format!(
+                "a frame rate must be a positive number, not {fps}"
+            )));
+        }
+        Ok(source)
+    }
+
     /// The `k`-th linearized mode (from 1, by increasing frequency) about the first stable
     /// equilibrium, animated: `q(t) = q₀ + a φₖ cos(ωₖ t)` at `fps` frames per second from 0
     /// to `t_end` (default: three periods). The amplitude `a` moves the drawn point that
@@ -99,16 +106,7 @@ impl Analysis {
         fps: f64,
         traces: &[String],
     ) -> Result<String, Error> {
-        let Some(source) = self.source() else {
-            return Err(Error::NotAvailable(
-                "a system built in code has no model to draw".to_owned(),
-            ));
-        };
-        if !(fps.is_finite() && fps > 0.0) {
-            return Err(Error::NotAvailable(format!(
-                "a frame rate must be a positive number, not {fps}"
-            )));
-        }
+        let source = self.animated_source(fps)?;
         let mode = crate::modes::Mode::of(self, k)?;
         let t_end = t_end.unwrap_or(3.0 * std::f64::consts::TAU / mode.omega);
         let count = t_end * fps;

@@ -5,8 +5,24 @@
 //! Lagrange–Dirichlet's criterion; a follower force (circulatory: its Jacobian is not
 //! symmetric) does not, and the eigenvalues decide as before.
 
-use lagrange::mechanics::linearize::Criterion;
-use lagrange::Analysis;
+use lagrange::mechanics::linearize::{Criterion, Linearized};
+use lagrange::{Analysis, Equilibria};
+
+/// The equilibrium at `values` (its index) and the linearization about it.
+fn linearized_at<'a>(equilibria: &'a Equilibria, values: &[f64]) -> (usize, &'a Linearized) {
+    let index = equilibria
+        .set
+        .equilibria
+        .iter()
+        .position(|e| {
+            e.values
+                .iter()
+                .zip(values)
+                .all(|(a, b)| (a - b).abs() < 1e-9)
+        })
+        .unwrap_or_else(|| panic!("no equilibrium at {values:?}"));
+    (index, equilibria.linearized[index].as_ref().unwrap())
+}
 
 const PUSHED_PENDULUM: &str = "coordinates theta
 parameters m = 1, l = 1, g = 9.81
@@ -23,14 +39,7 @@ force F*N.x at P
 fn a_pendulum_pushed_by_a_constant_force_hangs_stably_at_its_tilt() {
     let analysis = Analysis::from_text(PUSHED_PENDULUM).unwrap();
     let equilibria = analysis.equilibria().unwrap();
-    let tilt = (3.0_f64 / 9.81).atan();
-    let index = equilibria
-        .set
-        .equilibria
-        .iter()
-        .position(|e| (e.values[0] - tilt).abs() < 1e-9)
-        .expect("the tilted rest position");
-    let lin = equilibria.linearized[index].as_ref().unwrap();
+    let (index, lin) = linearized_at(equilibria, &[(3.0_f64 / 9.81).atan()]);
     assert_eq!(lin.stable, Some(true));
     assert_eq!(lin.criterion, Criterion::LagrangeDirichlet);
     // ω² = √(F² + (m g)²)/(m l).
@@ -59,14 +68,7 @@ generalized force C on theta
     let analysis = Analysis::from_text(text).unwrap();
     let equilibria = analysis.equilibria().unwrap();
     // sin θ = C/(m g l): the stable one hangs at asin(2/9.81).
-    let tilt = (2.0_f64 / 9.81).asin();
-    let index = equilibria
-        .set
-        .equilibria
-        .iter()
-        .position(|e| (e.values[0] - tilt).abs() < 1e-9)
-        .expect("the tilted rest position");
-    let lin = equilibria.linearized[index].as_ref().unwrap();
+    let (_, lin) = linearized_at(equilibria, &[(2.0_f64 / 9.81).asin()]);
     assert_eq!(lin.criterion, Criterion::LagrangeDirichlet);
     assert_eq!(lin.stable, Some(true));
 }
@@ -91,14 +93,7 @@ spring k on th2 - th1
 force -P*B2.y at T
 ";
     let analysis = Analysis::from_text(text).unwrap();
-    let equilibria = analysis.equilibria().unwrap();
-    let upright = equilibria
-        .set
-        .equilibria
-        .iter()
-        .position(|e| e.values.iter().all(|v| v.abs() < 1e-9))
-        .expect("the upright position");
-    let lin = equilibria.linearized[upright].as_ref().unwrap();
+    let (_, lin) = linearized_at(analysis.equilibria().unwrap(), &[0.0, 0.0]);
     let k0 = &lin.k0;
     assert!((k0[0][1] - k0[1][0]).abs() > 0.1, "{k0:?}");
     assert_ne!(lin.criterion, Criterion::LagrangeDirichlet);
