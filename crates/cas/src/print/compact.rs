@@ -314,10 +314,10 @@ fn fold_trig(terms: &mut Vec<Expr>) {
 
 fn fold_pass(terms: &mut Vec<Expr>) -> bool {
     let split: Vec<(Number, Expr)> = terms.iter().map(|t| split_coefficient(*t)).collect();
-    let index: FxHashMap<Expr, usize> = split
+    let index: FxHashMap<Vec<Expr>, usize> = split
         .iter()
         .enumerate()
-        .map(|(i, (_, rest))| (*rest, i))
+        .map(|(i, (_, rest))| (factor_key(factors_of(*rest)), i))
         .collect();
     // `None`: removed; `Some(true)`: changed in this pass.
     let mut state: Vec<Option<bool>> = vec![Some(false); terms.len()];
@@ -351,7 +351,7 @@ fn fold_partner(
     ci: &Number,
     rest: Expr,
     split: &[(Number, Expr)],
-    index: &FxHashMap<Expr, usize>,
+    index: &FxHashMap<Vec<Expr>, usize>,
     state: &[Option<bool>],
 ) -> Option<(usize, Expr)> {
     let factors = factors_of(rest);
@@ -378,8 +378,12 @@ fn fold_partner(
                 .filter(|&(k, _)| k != p && k != q)
                 .map(|(_, f)| *f)
                 .collect();
-            let partner = Expr::mul_all(others.iter().copied().chain([pa, pb]));
-            let Some(&j) = index.get(&partner) else {
+            let key = partner_key(&others, [pa, pb]).unwrap_or_else(|| {
+                factor_key(factors_of(Expr::mul_all(
+                    others.iter().copied().chain([pa, pb]),
+                )))
+            });
+            let Some(&j) = index.get(&key) else {
                 continue;
             };
             if j == i || state[j] != Some(false) {
@@ -414,6 +418,41 @@ fn fold_partner(
         }
     }
     None
+}
+
+/// The factors of a product as a lookup key: a canonical product is determined by the set of
+/// its factors, so their handles in index order identify it without building it.
+fn factor_key(mut factors: Vec<Expr>) -> Vec<Expr> {
+    factors.sort_unstable_by_key(|f| f.index());
+    factors
+}
+
+/// The [`factor_key`] of the product of `others` (the factors of a canonical product) and two
+/// functions `new`, merged as `Expr::mul_all` merges them (`sin a · sin² a` = `sin³ a`), built
+/// without forming the product: a trigonometric fold looks up one partner per pair of factors
+/// of every term, and building each as a product was most of the compact form's cost.
+/// `None` when a factor of `new` is not a plain function (`sin` of a negative angle is
+/// `−sin`), or merges into a power that is not a number; the caller then builds the product.
+fn partner_key(others: &[Expr], new: [Expr; 2]) -> Option<Vec<Expr>> {
+    let mut factors = others.to_vec();
+    for f in new {
+        if !matches!(f.node(), Node::Func(..)) {
+            return None;
+        }
+        match factors.iter().position(|g| split_power(*g).0 == f) {
+            None => factors.push(f),
+            Some(k) => {
+                let power = split_power(factors[k]).1.as_number()?.add(&Number::ONE);
+                let merged = f.pow(Expr::number(power));
+                if merged.is_literal_one() {
+                    factors.swap_remove(k);
+                } else {
+                    factors[k] = merged;
+                }
+            }
+        }
+    }
+    Some(factor_key(factors))
 }
 
 /// Collects terms that share their time-dependent factors: `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`.
