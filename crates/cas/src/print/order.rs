@@ -12,36 +12,65 @@ use std::cmp::Ordering;
 use rustc_hash::FxHashSet;
 
 use crate::expr::{split_coefficient, Expr, Node, SymbolKind};
+use crate::number::Number;
 
 use super::names::is_greek;
 
+/// A term with what the order of terms looks at, computed once: the comparison walks every
+/// factor of a term, and a sort of `T` terms compares `O(T log T)` times.
+struct SortKey {
+    info: TermInfo,
+    coefficient: Number,
+    rest: Expr,
+    term: Expr,
+}
+
+impl SortKey {
+    fn of(term: Expr) -> SortKey {
+        let (coefficient, rest) = split_coefficient(term);
+        SortKey {
+            info: TermInfo::of(term),
+            coefficient,
+            rest,
+            term,
+        }
+    }
+
+    fn negative(&self) -> bool {
+        self.coefficient.is_negative()
+    }
+}
+
 /// Orders the terms of a sum for people.
-fn cmp_terms(a: Expr, b: Expr) -> Ordering {
-    let (ia, ib) = (TermInfo::of(a), TermInfo::of(b));
+fn cmp_terms(a: &SortKey, b: &SortKey) -> Ordering {
+    let (ia, ib) = (&a.info, &b.info);
     ib.class
         .cmp(&ia.class)
         .then(ia.funcs.cmp(&ib.funcs))
         .then_with(|| name_key(ia.lead).cmp(&name_key(ib.lead)))
         .then_with(|| {
-            let ((ca, ra), (cb, rb)) = (split_coefficient(a), split_coefficient(b));
-            ra.cmp_structure(rb).then_with(|| ca.total_cmp(&cb))
+            a.rest
+                .cmp_structure(b.rest)
+                .then_with(|| a.coefficient.total_cmp(&b.coefficient))
         })
 }
 
 /// Sorts the terms of a sum for people. A sum does not open with a minus when a positive term
 /// of the same rank can lead instead (`θ2 − θ1`, not `−θ1 + θ2`).
 pub(super) fn sort_terms(terms: &mut [Expr]) {
-    terms.sort_by(|a, b| cmp_terms(*a, *b));
-    let negative = |t: Expr| split_coefficient(t).0.is_negative();
-    if terms.first().is_some_and(|t| negative(*t)) {
-        let first = TermInfo::of(terms[0]);
-        let lead = terms.iter().position(|t| {
-            let info = TermInfo::of(*t);
-            !negative(*t) && info.class == first.class && info.funcs == first.funcs
+    let mut keys: Vec<SortKey> = terms.iter().map(|t| SortKey::of(*t)).collect();
+    keys.sort_by(cmp_terms);
+    if keys.first().is_some_and(SortKey::negative) {
+        let first = &keys[0].info;
+        let lead = keys.iter().position(|k| {
+            !k.negative() && k.info.class == first.class && k.info.funcs == first.funcs
         });
         if let Some(k) = lead {
-            terms[..=k].rotate_right(1);
+            keys[..=k].rotate_right(1);
         }
+    }
+    for (t, k) in terms.iter_mut().zip(keys) {
+        *t = k.term;
     }
 }
 
