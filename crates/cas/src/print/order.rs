@@ -7,9 +7,10 @@
 //! Factors: the coefficient, parameters (masses first), sums of parameters, then the
 //! time-dependent factors (rates and coordinates, functions, sums).
 
+use std::cell::RefCell;
 use std::cmp::Ordering;
 
-use rustc_hash::FxHashSet;
+use rustc_hash::FxHashMap;
 
 use crate::expr::{split_coefficient, Expr, Node, SymbolKind};
 use crate::number::Number;
@@ -86,21 +87,60 @@ pub(super) fn cmp_factors(a: Expr, b: Expr) -> Ordering {
         })
 }
 
-/// Whether `e` depends on time (contains time, a coordinate or a rate). Each shared node is
-/// visited once: a tree walk of a DAG such as the derivative of a power tower is exponential.
+/// Whether `e` depends on time (contains time, a coordinate or a rate).
+///
+/// The printers ask this of every factor of every term, and a factor is often a large
+/// time-independent sum (a denominator in the parameters) asked about once per term it divides:
+/// the answer for each compound node is remembered (nodes never change), so each is visited once
+/// per thread, and a shared node once per walk (a tree walk of a DAG such as the derivative of a
+/// power tower is exponential).
 pub(super) fn has_time(e: Expr) -> bool {
-    let mut seen = FxHashSet::default();
-    let mut stack = vec![e];
-    while let Some(x) = stack.pop() {
-        if !seen.insert(x) {
-            continue;
-        }
-        match x.node() {
-            Node::Symbol(s) if s.kind() != SymbolKind::Constant => return true,
-            _ => stack.extend_from_slice(x.children()),
-        }
+    if let Some(leaf) = leaf_has_time(e) {
+        return leaf;
     }
-    false
+    HAS_TIME.with(|memo| {
+        let mut memo = memo.borrow_mut();
+        if let Some(&known) = memo.get(&e) {
+            return known;
+        }
+        // Post-order without recursion (expressions can be deep): a node is decided once all
+        // its compound children are.
+        let mut stack = vec![(e, false)];
+        while let Some((x, children_done)) = stack.pop() {
+            if memo.contains_key(&x) {
+                continue;
+            }
+            if children_done {
+                let answer = x
+                    .children()
+                    .iter()
+                    .any(|c| leaf_has_time(*c).unwrap_or_else(|| memo[c]));
+                memo.insert(x, answer);
+                continue;
+            }
+            stack.push((x, true));
+            for c in x.children() {
+                if leaf_has_time(*c).is_none() && !memo.contains_key(c) {
+                    stack.push((*c, false));
+                }
+            }
+        }
+        memo[&e]
+    })
+}
+
+thread_local! {
+    /// [`has_time`] of the compound nodes asked about so far.
+    static HAS_TIME: RefCell<FxHashMap<Expr, bool>> = RefCell::new(FxHashMap::default());
+}
+
+/// [`has_time`] of a leaf; `None` for a node with children.
+fn leaf_has_time(e: Expr) -> Option<bool> {
+    match e.node() {
+        Node::Symbol(s) => Some(s.kind() != SymbolKind::Constant),
+        Node::Number(_) | Node::Constant(_) => Some(false),
+        _ => None,
+    }
 }
 
 struct TermInfo {
