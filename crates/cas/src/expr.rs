@@ -766,7 +766,16 @@ impl Expr {
 
     /// `base ^ exp`, canonicalised.
     pub fn pow(self, exp: Expr) -> Expr {
-        Expr::mul_all([Expr::pow_raw(self, exp)])
+        // What `mul_all([pow_raw(self, exp)])` gives, without a product's work in the two
+        // common cases: a power node that does not simplify is its own canonical product, and
+        // so is a simplification to a symbol, constant, function or sum.
+        match Expr::pow_simplified(self, exp) {
+            None => intern(Node::Pow([self, exp])),
+            Some(p) => match p.node() {
+                Node::Symbol(_) | Node::Constant(_) | Node::Func(..) | Node::Add(_) => p,
+                _ => Expr::mul_all([p]),
+            },
+        }
     }
 
     fn pow_raw(base: Expr, exp: Expr) -> Expr {
