@@ -16,6 +16,7 @@ use std::sync::{Mutex, OnceLock};
 
 use hashbrown::HashTable;
 use rustc_hash::{FxBuildHasher, FxHashMap};
+use smallvec::SmallVec;
 
 use crate::number::Number;
 
@@ -383,8 +384,75 @@ impl Symbol {
     }
 }
 
+/// The factors of a product grouped by base, in the order each base first appears.
+///
+/// A product has a handful of factors: a list searched in order is faster than a hash map
+/// (which allocated a vector per base), and an index by base is built only for long products.
+#[derive(Default)]
+struct Bases {
+    list: Vec<Base>,
+    index: Option<FxHashMap<Expr, usize>>,
+}
+
+/// One base of a product, its exponents, and the factor it came as (when it came once).
+struct Base {
+    base: Expr,
+    exponents: SmallVec<[Expr; 2]>,
+    factor: Expr,
+}
+
+/// Past this many bases, [`Bases`] keeps an index.
+const BASES_SCANNED: usize = 16;
+
+impl Bases {
+    fn push(&mut self, factor: Expr) {
+        let (base, exp) = split_power(factor);
+        let found = match &self.index {
+            Some(index) => index.get(&base).copied(),
+            None => self.list.iter().position(|b| b.base == base),
+        };
+        if let Some(k) = found {
+            self.list[k].exponents.push(exp);
+            return;
+        }
+        if let Some(index) = &mut self.index {
+            index.insert(base, self.list.len());
+        }
+        self.list.push(Base {
+            base,
+            exponents: smallvec::smallvec![exp],
+            factor,
+        });
+        if self.index.is_none() && self.list.len() > BASES_SCANNED {
+            self.index = Some(
+                self.list
+                    .iter()
+                    .enumerate()
+                    .map(|(k, b)| (b.base, k))
+                    .collect(),
+            );
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Leaf constructors and access.
+
+/// The integers whose handles are kept (see [`small_integer`]).
+const SMALL_MIN: i64 = -2;
+const SMALL_MAX: i64 = 2;
+
+/// The handle of a small integer. Nearly every constructor call builds `0`, `1` or `−1`
+/// (`split_power` pairs each factor with the exponent one, `mul_all` starts from a coefficient),
+/// and interning one means hashing it and taking the interner's lock (in a profile of a large
+/// derivation and its printing, `split_power` alone spent 3 % of the instructions on it). The
+/// node is interned on first use, as before, so handles are the same as without the cache.
+fn small_integer(k: i64) -> Expr {
+    const SLOTS: usize = (SMALL_MAX - SMALL_MIN + 1) as usize;
+    static SMALL: [OnceLock<Expr>; SLOTS] = [const { OnceLock::new() }; SLOTS];
+    let slot = usize::try_from(k - SMALL_MIN).expect("k is in SMALL_MIN..=SMALL_MAX");
+    *SMALL[slot].get_or_init(|| intern(Node::Number(Number::int(k))))
+}
 
 impl Expr {
     /// The node behind the handle.
@@ -399,7 +467,13 @@ impl Expr {
 
     /// A number.
     pub fn number(n: Number) -> Expr {
-        intern(Node::Number(n))
+        match n {
+            Number::Small {
+                num: k @ SMALL_MIN..=SMALL_MAX,
+                den: 1,
+            } => small_integer(k),
+            _ => intern(Node::Number(n)),
+        }
     }
 
     /// An integer.
@@ -636,39 +710,32 @@ impl Expr {
     /// The product of the factors, canonicalised.
     pub fn mul_all(factors: impl IntoIterator<Item = Expr>) -> Expr {
         let mut coefficient = Number::ONE;
-        let mut exponents: FxHashMap<Expr, Vec<Expr>> = FxHashMap::default();
-        let mut order: Vec<Expr> = Vec::new();
+        let mut bases = Bases::default();
         let mut stack: Vec<Expr> = factors.into_iter().collect();
         stack.reverse();
         while let Some(f) = stack.pop() {
             match f.node() {
                 Node::Mul(inner) => stack.extend(inner.iter().rev().copied()),
                 Node::Number(n) => coefficient = coefficient.mul(n),
-                _ => {
-                    let (base, exp) = split_power(f);
-                    match exponents.get_mut(&base) {
-                        Some(v) => v.push(exp),
-                        None => {
-                            exponents.insert(base, vec![exp]);
-                            order.push(base);
-                        }
-                    }
-                }
+                _ => bases.push(f),
             }
         }
         if coefficient.is_zero() {
             return Expr::number(coefficient);
         }
-        let mut operands: Vec<Expr> = Vec::with_capacity(order.len() + 1);
+        let mut operands: Vec<Expr> = Vec::with_capacity(bases.list.len() + 1);
         let mut refold = false;
-        for base in order {
-            let exps = &exponents[&base];
-            let exp = if exps.len() == 1 {
-                exps[0]
-            } else {
-                Expr::add_all(exps.iter().copied())
+        for base in bases.list {
+            let p = match base.exponents.as_slice() {
+                // A power that came as one factor is that node unless it simplifies (it is
+                // what `pow_raw` would intern): looking it up again costs the interner's lock.
+                [exp] if base.factor != base.base => {
+                    Expr::pow_simplified(base.base, *exp).unwrap_or(base.factor)
+                }
+                // A factor that is not a power: `pow_raw(f, 1)` is `f`.
+                [_] => base.factor,
+                exps => Expr::pow_raw(base.base, Expr::add_all(exps.iter().copied())),
             };
-            let p = Expr::pow_raw(base, exp);
             match p.node() {
                 Node::Number(n) => coefficient = coefficient.mul(n),
                 // A power may split (`(2 x)^2` → `4 x^2`); fold its factors in a second pass.
@@ -699,43 +766,61 @@ impl Expr {
 
     /// `base ^ exp`, canonicalised.
     pub fn pow(self, exp: Expr) -> Expr {
-        Expr::mul_all([Expr::pow_raw(self, exp)])
+        // What `mul_all([pow_raw(self, exp)])` gives, without a product's work in the two
+        // common cases: a power node that does not simplify is its own canonical product, and
+        // so is a simplification to a symbol, constant, function or sum.
+        match Expr::pow_simplified(self, exp) {
+            None => intern(Node::Pow([self, exp])),
+            Some(p) => match p.node() {
+                Node::Symbol(_) | Node::Constant(_) | Node::Func(..) | Node::Add(_) => p,
+                _ => Expr::mul_all([p]),
+            },
+        }
     }
 
     fn pow_raw(base: Expr, exp: Expr) -> Expr {
+        Expr::pow_simplified(base, exp).unwrap_or_else(|| intern(Node::Pow([base, exp])))
+    }
+
+    /// `base ^ exp` when it simplifies to something other than the power node itself.
+    fn pow_simplified(base: Expr, exp: Expr) -> Option<Expr> {
         if exp.is_literal_zero() {
-            return Expr::one();
+            return Some(Expr::one());
         }
         if exp.is_literal_one() {
-            return base;
+            return Some(base);
         }
         if base.is_literal_one() {
-            return Expr::one();
+            return Some(Expr::one());
         }
         if let (Node::Number(b), Node::Number(e)) = (base.node(), exp.node()) {
             if let Some(n) = number_power(b, e) {
-                return Expr::number(n);
+                return Some(Expr::number(n));
             }
         }
         if let Node::Number(e) = exp.node() {
             if let Some(k) = e.to_i64() {
                 match base.node() {
                     // (b^e)^k = b^(e k) for integer k.
-                    Node::Pow([b, e2]) => return Expr::pow_raw(*b, Expr::mul_all([*e2, exp])),
+                    Node::Pow([b, e2]) => {
+                        return Some(Expr::pow_raw(*b, Expr::mul_all([*e2, exp])))
+                    }
                     // (x y)^k = x^k y^k for integer k.
                     Node::Mul(f) => {
-                        return Expr::mul_all(f.iter().map(|x| Expr::pow_raw(*x, Expr::int(k))))
+                        return Some(Expr::mul_all(
+                            f.iter().map(|x| Expr::pow_raw(*x, Expr::int(k))),
+                        ));
                     }
                     _ => {}
                 }
             }
             if let (Node::Number(b), Some(_)) = (base.node(), e.to_small_ratio()) {
                 if b.is_zero() && e.signum() > 0 {
-                    return Expr::zero();
+                    return Some(Expr::zero());
                 }
             }
         }
-        intern(Node::Pow([base, exp]))
+        None
     }
 
     /// `self ^ k` for an integer `k`.

@@ -18,9 +18,10 @@ pub fn eom_text(system: &System, equations: &Equations) -> String {
             let _ = writeln!(out, $($arg)*);
         }};
     }
-    // The model's constants by name, denominators spread, as in `solve`.
+    // The model's constants by name, denominators spread, as in `solve`; Unicode only (the
+    // LaTeX of `Notation::math` would double the printing of a large result for nothing).
     let notation = Notation::of(system);
-    let shown = |e: cas::Expr| notation.math(e).unicode;
+    let shown = |e: cas::Expr| to_unicode(notation.shape(e));
     for e in equations.eliminated() {
         say!(
             "{} eliminated by constraint `{}`: {} = {}",

@@ -187,6 +187,19 @@ impl Expr {
         )
     }
 
+    /// The denominator of the normal form, and its numerator only when `wanted(denominator)`:
+    /// [`Expr::numer_denom`] for a caller that often stops at the denominator (turning a long
+    /// numerator back into a tree is most of the cost of `numer_denom`).
+    pub(crate) fn denom_then_numer(
+        self,
+        wanted: impl FnOnce(Expr) -> bool,
+    ) -> (Expr, Option<Expr>) {
+        let r = to_rf(self);
+        let den = from_rf(&Rf::from_poly(r.den));
+        let num = wanted(den).then(|| from_rf(&Rf::from_poly(r.num)));
+        (den, num)
+    }
+
     /// Whether the expression is the literal `π`.
     pub fn is_pi(self) -> bool {
         matches!(self.node(), Node::Constant(Constant::Pi))

@@ -313,12 +313,9 @@ fn fold_trig(terms: &mut Vec<Expr>) {
 }
 
 fn fold_pass(terms: &mut Vec<Expr>) -> bool {
-    let split: Vec<(Number, Expr)> = terms.iter().map(|t| split_coefficient(*t)).collect();
-    let index: FxHashMap<Expr, usize> = split
-        .iter()
-        .enumerate()
-        .map(|(i, (_, rest))| (*rest, i))
-        .collect();
+    let split: Vec<(Number, Vec<Expr>)> =
+        terms.iter().map(|t| coefficient_and_factors(*t)).collect();
+    let index = TermIndex::new(&split);
     // `None`: removed; `Some(true)`: changed in this pass.
     let mut state: Vec<Option<bool>> = vec![Some(false); terms.len()];
     let mut changed = false;
@@ -326,8 +323,7 @@ fn fold_pass(terms: &mut Vec<Expr>) -> bool {
         if state[i] != Some(false) {
             continue;
         }
-        let (ci, rest) = &split[i];
-        if let Some((j, new)) = fold_partner(i, ci, *rest, &split, &index, &state) {
+        if let Some((j, new)) = fold_partner(i, &split, &index, &state) {
             terms[i] = new;
             state[i] = Some(true);
             state[j] = None;
@@ -344,17 +340,27 @@ fn fold_pass(terms: &mut Vec<Expr>) -> bool {
     changed
 }
 
-/// The partner of term `i` (coefficient `ci`, the rest `rest`) in an expanded `cos(a ± b)` or
-/// `sin(a ± b)`, and the folded term.
+/// A term's numeric coefficient and its other factors (those of `split_coefficient`'s rest),
+/// read off the term without building the rest.
+fn coefficient_and_factors(t: Expr) -> (Number, Vec<Expr>) {
+    match t.node() {
+        Node::Number(n) => (n.clone(), Vec::new()),
+        Node::Mul(f) => match f[0].node() {
+            Node::Number(n) => (n.clone(), f[1..].to_vec()),
+            _ => (Number::ONE, f.to_vec()),
+        },
+        _ => (Number::ONE, vec![t]),
+    }
+}
+
+/// The partner of term `i` in an expanded `cos(a ± b)` or `sin(a ± b)`, and the folded term.
 fn fold_partner(
     i: usize,
-    ci: &Number,
-    rest: Expr,
-    split: &[(Number, Expr)],
-    index: &FxHashMap<Expr, usize>,
+    split: &[(Number, Vec<Expr>)],
+    index: &TermIndex,
     state: &[Option<bool>],
 ) -> Option<(usize, Expr)> {
-    let factors = factors_of(rest);
+    let (ci, factors) = &split[i];
     for p in 0..factors.len() {
         let Some((fp, a)) = trig(factors[p]) else {
             continue;
@@ -372,19 +378,13 @@ fn fold_partner(
                 (Func::Sin, Func::Cos) => (a.cos(), b.sin()),
                 _ => continue,
             };
-            let others: Vec<Expr> = factors
-                .iter()
-                .enumerate()
-                .filter(|&(k, _)| k != p && k != q)
-                .map(|(_, f)| *f)
-                .collect();
-            let partner = Expr::mul_all(others.iter().copied().chain([pa, pb]));
-            let Some(&j) = index.get(&partner) else {
+            let Some(j) = index.partner(i, factors, [p, q], [pa, pb]) else {
                 continue;
             };
             if j == i || state[j] != Some(false) {
                 continue;
             }
+            let others = without(factors, [p, q]);
             let cj = &split[j].0;
             let same = cj == ci;
             if !same && *cj != ci.neg() {
@@ -414,6 +414,167 @@ fn fold_partner(
         }
     }
     None
+}
+
+/// The terms of a sum by the set of their factors (coefficients aside), to find the partner of
+/// a trigonometric fold without building it.
+///
+/// A canonical product is determined by the set of its factors, so a partner is found by that
+/// set. Each set is keyed by the wrapping sum of a hash of each factor's handle: the key of a
+/// partner is the term's key with two factors' hashes taken out and two put in, so looking up
+/// the partner of each pair of factors costs a few additions, and a term's factors are compared
+/// only on a hit. (Building each partner as a product, as this once did, was most of the compact
+/// form's cost on a large result.)
+struct TermIndex {
+    by_key: FxHashMap<u64, Vec<usize>>,
+    /// Each term's key.
+    keys: Vec<u64>,
+    /// Each term's factors in index order, for the comparison on a hit.
+    sorted: Vec<Vec<Expr>>,
+}
+
+impl TermIndex {
+    fn new(split: &[(Number, Vec<Expr>)]) -> TermIndex {
+        let mut by_key: FxHashMap<u64, Vec<usize>> = FxHashMap::default();
+        let mut keys = Vec::with_capacity(split.len());
+        let mut sorted = Vec::with_capacity(split.len());
+        for (i, (_, factors)) in split.iter().enumerate() {
+            let key = set_key(factors);
+            by_key.entry(key).or_default().push(i);
+            keys.push(key);
+            sorted.push(in_index_order(factors.clone()));
+        }
+        TermIndex {
+            by_key,
+            keys,
+            sorted,
+        }
+    }
+
+    /// The term whose factors are those of term `i` (`factors`) without the two at `removed`
+    /// and with the two functions `added` (merged into powers as `Expr::mul_all` merges them:
+    /// `sin a · sin² a` = `sin³ a`). Of several terms with that set of factors, the last, as a
+    /// map from the product to its term would give.
+    fn partner(
+        &self,
+        i: usize,
+        factors: &[Expr],
+        removed: [usize; 2],
+        added: [Expr; 2],
+    ) -> Option<usize> {
+        let mut key = removed.iter().fold(self.keys[i], |key, &k| {
+            key.wrapping_sub(mix(factors[k].index()))
+        });
+        for f in added {
+            let kept = |k: usize| !removed.contains(&k);
+            let same_base = (0..factors.len()).find(|&k| kept(k) && split_power(factors[k]).0 == f);
+            let plain = matches!(f.node(), Node::Func(..));
+            match (plain, same_base) {
+                (true, None) => key = key.wrapping_add(mix(f.index())),
+                (true, Some(k)) => {
+                    key = key.wrapping_sub(mix(factors[k].index()));
+                    let Some(merged) = merged_power(f, factors[k]) else {
+                        return self.partner_built(factors, removed, added);
+                    };
+                    if !merged.is_literal_one() {
+                        key = key.wrapping_add(mix(merged.index()));
+                    }
+                }
+                (false, _) => return self.partner_built(factors, removed, added),
+            }
+        }
+        // Nearly every lookup misses: the partner's factors are listed only on a hit.
+        let candidates = self.by_key.get(&key)?;
+        let Some(partner) = merged_with(&without(factors, removed), added) else {
+            return self.partner_built(factors, removed, added);
+        };
+        let partner = in_index_order(partner);
+        candidates
+            .iter()
+            .rev()
+            .copied()
+            .find(|&j| self.sorted[j] == partner)
+    }
+
+    /// [`TermIndex::partner`] when an added factor is not a plain function (`sin` of a negative
+    /// angle is `−sin`): the partner is built as a product.
+    fn partner_built(
+        &self,
+        factors: &[Expr],
+        removed: [usize; 2],
+        added: [Expr; 2],
+    ) -> Option<usize> {
+        let others = without(factors, removed);
+        let partner = factors_of(Expr::mul_all(others.into_iter().chain(added)));
+        let candidates = self.by_key.get(&set_key(&partner))?;
+        let partner = in_index_order(partner);
+        candidates
+            .iter()
+            .rev()
+            .copied()
+            .find(|&j| self.sorted[j] == partner)
+    }
+}
+
+/// `factors` without the two at `removed`, in their order.
+fn without(factors: &[Expr], removed: [usize; 2]) -> Vec<Expr> {
+    factors
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| !removed.contains(k))
+        .map(|(_, f)| *f)
+        .collect()
+}
+
+/// `f · factor` for a factor that is a power of `f`, as `Expr::mul_all` forms it; `None` when
+/// the power is not a number.
+fn merged_power(f: Expr, factor: Expr) -> Option<Expr> {
+    let power = split_power(factor).1.as_number()?.add(&Number::ONE);
+    Some(f.pow(Expr::number(power)))
+}
+
+/// The factors of the product of `others` (the factors of a canonical product) and the two
+/// functions `added`, merged as `Expr::mul_all` merges them; `None` when a power is not a
+/// number.
+fn merged_with(others: &[Expr], added: [Expr; 2]) -> Option<Vec<Expr>> {
+    let mut factors = others.to_vec();
+    for f in added {
+        match factors.iter().position(|g| split_power(*g).0 == f) {
+            None => factors.push(f),
+            Some(k) => {
+                let merged = merged_power(f, factors[k])?;
+                if merged.is_literal_one() {
+                    factors.swap_remove(k);
+                } else {
+                    factors[k] = merged;
+                }
+            }
+        }
+    }
+    Some(factors)
+}
+
+/// A set of factors in the order of their handles (a canonical product has each factor once).
+fn in_index_order(mut factors: Vec<Expr>) -> Vec<Expr> {
+    factors.sort_unstable_by_key(|f| f.index());
+    factors
+}
+
+/// The key of a set of factors: the wrapping sum of a mixed hash of each handle, independent of
+/// their order.
+fn set_key(factors: &[Expr]) -> u64 {
+    factors
+        .iter()
+        .fold(0u64, |key, f| key.wrapping_add(mix(f.index())))
+}
+
+/// The SplitMix64 finaliser: spreads a handle over 64 bits, so that sums of distinct handles'
+/// hashes rarely agree (a hit is checked anyway).
+fn mix(index: u32) -> u64 {
+    let mut z = u64::from(index).wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
 }
 
 /// Collects terms that share their time-dependent factors: `m_A ẍ + m_B ẍ` → `(m_A + m_B) ẍ`.

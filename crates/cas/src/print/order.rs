@@ -7,41 +7,71 @@
 //! Factors: the coefficient, parameters (masses first), sums of parameters, then the
 //! time-dependent factors (rates and coordinates, functions, sums).
 
+use std::cell::RefCell;
 use std::cmp::Ordering;
 
-use rustc_hash::FxHashSet;
+use rustc_hash::FxHashMap;
 
 use crate::expr::{split_coefficient, Expr, Node, SymbolKind};
+use crate::number::Number;
 
 use super::names::is_greek;
 
+/// A term with what the order of terms looks at, computed once: the comparison walks every
+/// factor of a term, and a sort of `T` terms compares `O(T log T)` times.
+struct SortKey {
+    info: TermInfo,
+    coefficient: Number,
+    rest: Expr,
+    term: Expr,
+}
+
+impl SortKey {
+    fn of(term: Expr) -> SortKey {
+        let (coefficient, rest) = split_coefficient(term);
+        SortKey {
+            info: TermInfo::of(term),
+            coefficient,
+            rest,
+            term,
+        }
+    }
+
+    fn negative(&self) -> bool {
+        self.coefficient.is_negative()
+    }
+}
+
 /// Orders the terms of a sum for people.
-fn cmp_terms(a: Expr, b: Expr) -> Ordering {
-    let (ia, ib) = (TermInfo::of(a), TermInfo::of(b));
+fn cmp_terms(a: &SortKey, b: &SortKey) -> Ordering {
+    let (ia, ib) = (&a.info, &b.info);
     ib.class
         .cmp(&ia.class)
         .then(ia.funcs.cmp(&ib.funcs))
         .then_with(|| name_key(ia.lead).cmp(&name_key(ib.lead)))
         .then_with(|| {
-            let ((ca, ra), (cb, rb)) = (split_coefficient(a), split_coefficient(b));
-            ra.cmp_structure(rb).then_with(|| ca.total_cmp(&cb))
+            a.rest
+                .cmp_structure(b.rest)
+                .then_with(|| a.coefficient.total_cmp(&b.coefficient))
         })
 }
 
 /// Sorts the terms of a sum for people. A sum does not open with a minus when a positive term
 /// of the same rank can lead instead (`θ2 − θ1`, not `−θ1 + θ2`).
 pub(super) fn sort_terms(terms: &mut [Expr]) {
-    terms.sort_by(|a, b| cmp_terms(*a, *b));
-    let negative = |t: Expr| split_coefficient(t).0.is_negative();
-    if terms.first().is_some_and(|t| negative(*t)) {
-        let first = TermInfo::of(terms[0]);
-        let lead = terms.iter().position(|t| {
-            let info = TermInfo::of(*t);
-            !negative(*t) && info.class == first.class && info.funcs == first.funcs
+    let mut keys: Vec<SortKey> = terms.iter().map(|t| SortKey::of(*t)).collect();
+    keys.sort_by(cmp_terms);
+    if keys.first().is_some_and(SortKey::negative) {
+        let first = &keys[0].info;
+        let lead = keys.iter().position(|k| {
+            !k.negative() && k.info.class == first.class && k.info.funcs == first.funcs
         });
         if let Some(k) = lead {
-            terms[..=k].rotate_right(1);
+            keys[..=k].rotate_right(1);
         }
+    }
+    for (t, k) in terms.iter_mut().zip(keys) {
+        *t = k.term;
     }
 }
 
@@ -57,21 +87,60 @@ pub(super) fn cmp_factors(a: Expr, b: Expr) -> Ordering {
         })
 }
 
-/// Whether `e` depends on time (contains time, a coordinate or a rate). Each shared node is
-/// visited once: a tree walk of a DAG such as the derivative of a power tower is exponential.
+/// Whether `e` depends on time (contains time, a coordinate or a rate).
+///
+/// The printers ask this of every factor of every term, and a factor is often a large
+/// time-independent sum (a denominator in the parameters) asked about once per term it divides:
+/// the answer for each compound node is remembered (nodes never change), so each is visited once
+/// per thread, and a shared node once per walk (a tree walk of a DAG such as the derivative of a
+/// power tower is exponential).
 pub(super) fn has_time(e: Expr) -> bool {
-    let mut seen = FxHashSet::default();
-    let mut stack = vec![e];
-    while let Some(x) = stack.pop() {
-        if !seen.insert(x) {
-            continue;
-        }
-        match x.node() {
-            Node::Symbol(s) if s.kind() != SymbolKind::Constant => return true,
-            _ => stack.extend_from_slice(x.children()),
-        }
+    if let Some(leaf) = leaf_has_time(e) {
+        return leaf;
     }
-    false
+    HAS_TIME.with(|memo| {
+        let mut memo = memo.borrow_mut();
+        if let Some(&known) = memo.get(&e) {
+            return known;
+        }
+        // Post-order without recursion (expressions can be deep): a node is decided once all
+        // its compound children are.
+        let mut stack = vec![(e, false)];
+        while let Some((x, children_done)) = stack.pop() {
+            if memo.contains_key(&x) {
+                continue;
+            }
+            if children_done {
+                let answer = x
+                    .children()
+                    .iter()
+                    .any(|c| leaf_has_time(*c).unwrap_or_else(|| memo[c]));
+                memo.insert(x, answer);
+                continue;
+            }
+            stack.push((x, true));
+            for c in x.children() {
+                if leaf_has_time(*c).is_none() && !memo.contains_key(c) {
+                    stack.push((*c, false));
+                }
+            }
+        }
+        memo[&e]
+    })
+}
+
+thread_local! {
+    /// [`has_time`] of the compound nodes asked about so far.
+    static HAS_TIME: RefCell<FxHashMap<Expr, bool>> = RefCell::new(FxHashMap::default());
+}
+
+/// [`has_time`] of a leaf; `None` for a node with children.
+fn leaf_has_time(e: Expr) -> Option<bool> {
+    match e.node() {
+        Node::Symbol(s) => Some(s.kind() != SymbolKind::Constant),
+        Node::Number(_) | Node::Constant(_) => Some(false),
+        _ => None,
+    }
 }
 
 struct TermInfo {

@@ -83,10 +83,10 @@ fn printed_len(e: Expr) -> usize {
 /// The two spread forms of `e` (by time-dependent part; by time-dependent part and
 /// parameters), or `None` when the denominator is one or depends on time.
 fn spread_candidates(e: Expr) -> Option<[Expr; 2]> {
-    let (num, den) = e.normal().numer_denom();
-    if den.is_literal_one() || has_time(den) {
-        return None;
-    }
+    let (den, num) = e
+        .normal()
+        .denom_then_numer(|den| !den.is_literal_one() && !has_time(den));
+    let num = num?;
     let terms: Vec<Expr> = match num.node() {
         Node::Add(t) => t.to_vec(),
         _ => vec![num],
