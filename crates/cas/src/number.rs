@@ -586,8 +586,13 @@ impl Hash for Number {
                 den.hash(state);
             }
             Number::Big(r) => {
+                // Not `Ratio`'s own hash: it follows the continued fraction recursively, one
+                // stack frame per partial quotient, and overflowed the stack on a 10⁵-digit
+                // power (`1.069999999999**9998`). A big number is always in lowest terms with
+                // a positive denominator, so its numerator and denominator are its identity.
                 1u8.hash(state);
-                r.hash(state);
+                r.numer().hash(state);
+                r.denom().hash(state);
             }
             Number::Float(x) => {
                 2u8.hash(state);
@@ -658,6 +663,34 @@ impl std::ops::Mul for Number {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A number whose continued fraction is long (consecutive Fibonacci numbers: [1; 1, 1, …],
+    /// 100,000 partial quotients) hashes without recursing on it: `Ratio`'s own hash took one
+    /// stack frame per quotient and overflowed the stack (found by the property test
+    /// `mutated_printed_text_never_panics` on `1.069999999999**9998`).
+    #[test]
+    fn a_big_number_with_a_long_continued_fraction_hashes_and_equal_ones_agree() {
+        let (mut a, mut b) = (BigInt::one(), BigInt::one());
+        for _ in 0..100_000 {
+            let next = &a + &b;
+            a = std::mem::replace(&mut b, next);
+        }
+        let ratio = Number::from_big(BigRational::new(b.clone(), a.clone()));
+        assert!(matches!(ratio, Number::Big(_)));
+        let hash = |n: &Number| {
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            n.hash(&mut h);
+            h.finish()
+        };
+        // The same value built another way (not reduced by hand: `new` reduces) hashes alike.
+        let again = Number::from_big(BigRational::new(&b * 3, &a * 3));
+        assert_eq!(ratio, again);
+        assert_eq!(hash(&ratio), hash(&again));
+        assert_ne!(
+            hash(&ratio),
+            hash(&Number::from_big(BigRational::new(a, b)))
+        );
+    }
 
     #[test]
     fn small_arithmetic_is_exact_and_reduced() {
