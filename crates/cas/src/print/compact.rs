@@ -488,6 +488,11 @@ impl TermIndex {
         let Some(partner) = merged_with(&without(factors, removed), added) else {
             return self.partner_built(factors, removed, added);
         };
+        self.find_among(candidates, partner)
+    }
+
+    /// The last candidate whose factors are `partner`'s (in index order).
+    fn find_among(&self, candidates: &[usize], partner: Vec<Expr>) -> Option<usize> {
         let partner = in_index_order(partner);
         candidates
             .iter()
@@ -507,12 +512,7 @@ impl TermIndex {
         let others = without(factors, removed);
         let partner = factors_of(Expr::mul_all(others.into_iter().chain(added)));
         let candidates = self.by_key.get(&set_key(&partner))?;
-        let partner = in_index_order(partner);
-        candidates
-            .iter()
-            .rev()
-            .copied()
-            .find(|&j| self.sorted[j] == partner)
+        self.find_among(candidates, partner)
     }
 }
 
