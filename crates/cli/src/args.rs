@@ -94,13 +94,8 @@ pub enum Command {
         /// The expression, e.g. "sin(a+b) - sin(a)*cos(b)" (a leading minus needs no `--`).
         #[arg(allow_hyphen_values = true)]
         expr: String,
-        /// Output dialect.
-        #[arg(long, value_enum, default_value_t = Format::Unicode)]
-        format: Format,
-        /// Names that are functions of time (coordinates), comma-separated; names with a
-        /// `_d`/`_dd` suffix are recognised without this.
-        #[arg(long, value_delimiter = ',')]
-        coords: Vec<String>,
+        #[command(flatten)]
+        options: ExpressionOptions,
     },
     /// Print the derivative of an expression with respect to a variable; `t` means the total
     /// time derivative (coordinates `q` have rates `q_d`).
@@ -110,13 +105,21 @@ pub enum Command {
         expr: String,
         /// The variable: a symbol name, a rate like `theta_d`, or `t`.
         var: String,
-        /// Output dialect.
-        #[arg(long, value_enum, default_value_t = Format::Unicode)]
-        format: Format,
-        /// Names that are functions of time (coordinates), comma-separated.
-        #[arg(long, value_delimiter = ',')]
-        coords: Vec<String>,
+        #[command(flatten)]
+        options: ExpressionOptions,
     },
+}
+
+/// The options of `lagrange simplify` and `lagrange diff`.
+#[derive(Args, Debug, Clone)]
+pub struct ExpressionOptions {
+    /// Output dialect.
+    #[arg(long, value_enum, default_value_t = Format::Unicode)]
+    pub format: Format,
+    /// Names that are functions of time (coordinates), comma-separated; names with a
+    /// `_d`/`_dd` suffix are recognised without this.
+    #[arg(long, value_delimiter = ',')]
+    pub coords: Vec<String>,
 }
 
 /// How expressions are printed.

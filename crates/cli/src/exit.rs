@@ -61,6 +61,11 @@ impl Failure {
         Failure::with(&error, format!("error: {error}"))
     }
 
+    /// A library error about what a flag gave: `error: --set k2=1: …`.
+    pub fn flag(flag: &str, error: Error) -> Failure {
+        Failure::with(&error, format!("error: {flag} {error}"))
+    }
+
     /// The code of `error`'s kind, and how to go past a work limit after its message.
     fn with(error: &Error, mut message: String) -> Failure {
         let code = match error.kind() {
@@ -98,23 +103,31 @@ impl Failure {
 const WORK_LIMIT_HELP: &str =
     "\nhelp: `--work-limit 10` allows ten times as much symbolic work (terms, degree, operations)";
 
-/// Writes `text` to standard output; a write error (a full disk) is [`Exit::Output`].
-pub fn print(text: &str) -> Result<(), Failure> {
+/// Writes `bytes` to standard output; a write error (a full disk) is [`Exit::Output`].
+pub fn print(bytes: impl AsRef<[u8]>) -> Result<(), Failure> {
     let mut out = std::io::stdout().lock();
-    out.write_all(text.as_bytes())
+    out.write_all(bytes.as_ref())
         .and_then(|()| out.flush())
-        .map_err(|e| output_error("standard output", &e))
+        .map_err(|e| {
+            Failure::plain(Error::Write {
+                what: "standard output".into(),
+                reason: e.to_string(),
+            })
+        })
 }
 
 /// [`print`] with a line break.
 pub fn println(text: &str) -> Result<(), Failure> {
-    print(&format!("{}\n", text.trim_end_matches('\n')))
+    print(format!("{}\n", text.trim_end_matches('\n')))
 }
 
-/// A write error on `what` (the library's [`Error::Write`]).
-pub fn output_error(what: &str, error: &std::io::Error) -> Failure {
-    let (what, reason) = (what.to_owned(), error.to_string());
-    Failure::plain(Error::Write { what, reason })
+/// Prints `bytes`, or writes them to `out` and says so.
+pub fn emit(out: Option<&Path>, bytes: impl AsRef<[u8]>) -> Result<(), Failure> {
+    let Some(out) = out else {
+        return print(bytes);
+    };
+    lagrange::write_file(out, bytes.as_ref()).map_err(Failure::plain)?;
+    println(&format!("wrote {}", out.display()))
 }
 
 /// Refuses an output file that is the model itself; says on stderr when an existing file is

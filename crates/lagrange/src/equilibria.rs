@@ -82,6 +82,19 @@ impl EquilibriumSweep {
 pub type Deviations<'a> = Option<(&'a [f64], &'a [f64])>;
 
 impl Equilibria {
+    /// Checks an index into the list of equilibria (as `lagrange equilibria` numbers them).
+    ///
+    /// # Errors
+    /// [`Error::NoSuchEquilibrium`] when there is no equilibrium `index`.
+    pub fn check_index(&self, index: usize) -> Result<(), Error> {
+        let count = self.set.equilibria.len();
+        if index < count {
+            Ok(())
+        } else {
+            Err(Error::NoSuchEquilibrium { index, count })
+        }
+    }
+
     /// The equilibria and their stability, as `lagrange equilibria` prints them.
     #[must_use]
     pub fn to_text(&self) -> String {

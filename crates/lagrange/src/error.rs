@@ -152,6 +152,31 @@ pub enum Error {
     /// A plot could not be drawn or written, or its file name does not say its format.
     #[error(transparent)]
     Plot(#[from] report::PlotError),
+    /// An output file's name does not end in an extension of a format it can be written in.
+    #[error("`{}`: {output} is written as {}; give a file name ending in {}", path.display(),
+        crate::output::format_names(*output).0, crate::output::format_names(*output).1)]
+    FileFormat {
+        /// The file.
+        path: PathBuf,
+        /// What it would hold.
+        output: crate::Output,
+    },
+    /// A `NAME=VALUE` given from outside the model was refused.
+    #[error("{item}: {error}")]
+    Refused {
+        /// The item as given.
+        item: String,
+        /// Why.
+        error: Box<Error>,
+    },
+    /// An equilibrium asked for by an index beyond the list.
+    #[error("there are {count} equilibria (indices from 0); {index} is not one of them")]
+    NoSuchEquilibrium {
+        /// The index asked for.
+        index: usize,
+        /// How many equilibria there are.
+        count: usize,
+    },
     /// An output that describes one run was asked of a sweep.
     #[error("{0} one run; leave it out of a sweep")]
     OneRunOnly(OneRunOnly),
@@ -224,6 +249,9 @@ impl Error {
             | Error::Create { .. }
             | Error::Write { .. }
             | Error::Plot(_)
+            | Error::FileFormat { .. }
+            | Error::NoSuchEquilibrium { .. }
+            | Error::Refused { .. }
             | Error::OneRunOnly(_) => format!("error: {self}"),
             _ => format!("error: {file}: {self}"),
         }
@@ -256,9 +284,12 @@ impl Error {
             | Error::OverwritesInput { .. }
             | Error::Create { .. }
             | Error::Plot(report::PlotError::Format { .. })
+            | Error::FileFormat { .. }
+            | Error::NoSuchEquilibrium { .. }
             | Error::OneRunOnly(_) => ErrorKind::Input,
             Error::Write { .. } | Error::Plot(_) => ErrorKind::Output,
             Error::Located { kind, .. } => *kind,
+            Error::Refused { error, .. } => error.kind(),
             Error::Simulation(
                 S::InvalidSetting { .. }
                 | S::MissingValue(_)

@@ -68,6 +68,7 @@ mod error;
 pub mod expression;
 mod figure;
 mod modes;
+mod output;
 mod reactions;
 mod runs;
 mod simulate;
@@ -78,13 +79,14 @@ pub use analysis::{Analysis, Source};
 pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Range};
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
+pub use output::{FileFormat, Output};
 pub use reactions::Reactions;
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
     direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,
     Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
-pub use solve::{Figures, Solution};
+pub use solve::{Figures, Solution, PNG_SCALE};
 pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;

@@ -225,12 +225,12 @@ pub fn create(path: &Path) -> Result<BufWriter<File>, Error> {
         })
 }
 
-/// Writes `text` to a file, created or emptied first.
+/// Writes `bytes` (a text or an image) to a file, created or emptied first.
 ///
 /// # Errors
 /// [`Error::Write`], naming the file.
-pub fn write_file(path: &Path, text: &str) -> Result<(), Error> {
-    std::fs::write(path, text).map_err(|e| write_error(&format!("`{}`", path.display()), &e))
+pub fn write_file(path: &Path, bytes: impl AsRef<[u8]>) -> Result<(), Error> {
+    std::fs::write(path, bytes).map_err(|e| write_error(&format!("`{}`", path.display()), &e))
 }
 
 /// Writes and flushes `text`; an error names `what` was being written.

@@ -5,8 +5,9 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use lagrange::{FileFormat, Output};
 
-use crate::exit::{check_output, output_error, print, println, Exit, Failure};
+use crate::exit::{check_output, emit, Exit, Failure};
 
 /// The flags of `lagrange animate`.
 #[derive(Args, Debug)]
@@ -38,21 +39,13 @@ pub struct AnimateArgs {
 pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
     let path = args.model.as_path();
     if let Some(out) = &args.out {
-        if !out
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("html"))
-        {
-            return Err(Failure::input(format!(
-                "--out {}: an animation is written as HTML; give a file name ending in .html",
-                out.display()
-            )));
-        }
+        FileFormat::of(out, Output::Animation).map_err(|e| Failure::flag("--out", e))?;
         check_output(out, path)?;
     }
     if !(args.fps.is_finite() && args.fps > 0.0) {
+        let fps = args.fps;
         return Err(Failure::input(format!(
-            "--fps {}: give a positive number",
-            args.fps
+            "--fps {fps}: give a positive number"
         )));
     }
     let analysis = super::load(path, &args.set)?;
@@ -61,13 +54,6 @@ pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
         Some(k) => analysis.mode_animation(k, args.t_end, args.fps, &args.trace),
     }
     .map_err(|e| Failure::of(e, path))?;
-    match &args.out {
-        None => print(&html)?,
-        Some(out) => {
-            std::fs::write(out, &html)
-                .map_err(|e| output_error(&format!("`{}`", out.display()), &e))?;
-            println(&format!("wrote {}", out.display()))?;
-        }
-    }
+    emit(args.out.as_deref(), html)?;
     Ok(Exit::Success)
 }

@@ -12,7 +12,7 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> Result<Exit, Failu
     let equations = analysis.equations().map_err(|e| Failure::of(e, path))?;
     match format {
         EomFormat::Json => println(&json(&report::eom_json(analysis.system(), equations)))?,
-        EomFormat::Text => print(&report::eom_text(analysis.system(), equations))?,
+        EomFormat::Text => print(report::eom_text(analysis.system(), equations))?,
     }
     Ok(Exit::Success)
 }

@@ -34,11 +34,9 @@ pub fn run(
     let found = analysis
         .equilibria_with(&search)
         .map_err(|e| Failure::of(e, path))?;
-    if let Some(i) = only.filter(|i| *i >= found.set.equilibria.len()) {
-        return Err(Failure::input(format!(
-            "--equilibrium {i}: there are {} equilibria (indices from 0)",
-            found.set.equilibria.len()
-        )));
+    if let Some(i) = only {
+        let refused = |e| Failure::plain(e).prefixed(&format!("--equilibrium {i}"));
+        found.check_index(i).map_err(refused)?;
     }
     let text = match initial {
         None if as_json => json(&found.to_json()),

@@ -2,17 +2,17 @@
 
 use lagrange::{cas, expression};
 
-use crate::args::Format;
+use crate::args::{ExpressionOptions, Format};
 use crate::exit::{println, Exit, Failure};
 
 /// `lagrange simplify EXPR`.
-pub fn simplify(text: &str, format: Format, coords: &[String]) -> Result<Exit, Failure> {
-    print(expression::simplify(text, coords), format)
+pub fn simplify(text: &str, options: &ExpressionOptions) -> Result<Exit, Failure> {
+    print(expression::simplify(text, &options.coords), options.format)
 }
 
 /// `lagrange diff EXPR VAR`.
-pub fn diff(text: &str, var: &str, format: Format, coords: &[String]) -> Result<Exit, Failure> {
-    print(expression::diff(text, var, coords), format)
+pub fn diff(text: &str, var: &str, options: &ExpressionOptions) -> Result<Exit, Failure> {
+    print(expression::diff(text, var, &options.coords), options.format)
 }
 
 fn print(e: Result<cas::Expr, lagrange::Error>, format: Format) -> Result<Exit, Failure> {

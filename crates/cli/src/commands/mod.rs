@@ -37,17 +37,8 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
         Command::Simulate(args) => simulate::run(&args),
         Command::Draw(args) => draw::run(&args),
         Command::Animate(args) => animate::run(&args),
-        Command::Simplify {
-            expr,
-            format,
-            coords,
-        } => expression::simplify(&expr, format, &coords),
-        Command::Diff {
-            expr,
-            var,
-            format,
-            coords,
-        } => expression::diff(&expr, &var, format, &coords),
+        Command::Simplify { expr, options } => expression::simplify(&expr, &options),
+        Command::Diff { expr, var, options } => expression::diff(&expr, &var, &options),
     }
 }
 
@@ -58,13 +49,9 @@ pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
         "{}",
         analysis.warnings(&path.display().to_string(), render_options())
     );
-    for item in set {
-        let assignment =
-            lagrange::parse_assignment(item).map_err(|e| Failure::input(format!("--set {e}")))?;
-        analysis
-            .set(&assignment)
-            .map_err(|e| Failure::input(format!("--set {item}: {e}")))?;
-    }
+    analysis
+        .set_texts(set)
+        .map_err(|e| Failure::flag("--set", e))?;
     Ok(analysis)
 }
 

@@ -16,7 +16,7 @@ pub fn run(path: &Path, format: EomFormat, set: &[String]) -> Result<Exit, Failu
     };
     match format {
         EomFormat::Json => println(&super::eom::json(&computed.to_json()))?,
-        EomFormat::Text => print(&computed.to_text())?,
+        EomFormat::Text => print(computed.to_text())?,
     }
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
     Ok(if computed.disagree() {

@@ -6,7 +6,7 @@ use std::path::Path;
 use lagrange::Figures;
 
 use crate::args::ReportFormat;
-use crate::exit::{check_output, print, println, Exit, Failure};
+use crate::exit::{emit, Exit, Failure};
 
 /// `lagrange solve MODEL [--format …] [--out DIR]`.
 pub fn run(
@@ -16,38 +16,17 @@ pub fn run(
     set: &[String],
 ) -> Result<Exit, Failure> {
     let analysis = super::load(path, set)?;
-    let stem = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("solution")
-        .to_owned();
-    let figures = match out {
-        Some(dir) => {
-            // Before the sections: the simulation writes its plots there.
-            std::fs::create_dir_all(dir).map_err(|e| {
-                Failure::input(format!(
-                    "cannot create the directory `{}`: {e}",
-                    dir.display()
-                ))
-            })?;
-            let extension = if format == ReportFormat::Tex {
-                "png"
-            } else {
-                "svg"
-            };
-            check_output(&dir.join(format!("{stem}-motion.{extension}")), path)?;
-            // The figure of the system and its animation, at the top of the document.
-            check_output(&dir.join(format!("{stem}.{extension}")), path)?;
-            check_output(&dir.join(format!("{stem}.html")), path)?;
-            check_output(&dir.join(format!("{stem}.{}", format.extension())), path)?;
-            Some(Figures {
-                directory: dir.to_owned(),
-                stem: stem.clone(),
-                extension,
-            })
-        }
-        None => None,
-    };
+    // Before the sections: the simulation writes its plots into the directory.
+    let figures = out
+        .map(|dir| Figures::prepare(dir, path, format.extension()))
+        .transpose()
+        .map_err(|e| Failure::of(e, path))?
+        .map(|(figures, replaced)| {
+            for file in replaced {
+                eprintln!("replacing {}", file.display());
+            }
+            figures
+        });
     let solution = analysis
         .solution(figures.as_ref())
         .map_err(|e| Failure::of(e, path))?;
@@ -63,15 +42,8 @@ pub fn run(
             super::eom::json(&value) + "\n"
         }
     };
-    match out {
-        None => print(&text)?,
-        Some(dir) => {
-            let file = dir.join(format!("{stem}.{}", format.extension()));
-            std::fs::write(&file, text)
-                .map_err(|e| crate::exit::output_error(&format!("`{}`", file.display()), &e))?;
-            println(&format!("wrote {}", file.display()))?;
-        }
-    }
+    let file = figures.map(|f| f.report_file(format.extension()));
+    emit(file.as_deref(), text)?;
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
     Ok(if solution.disagree {
         Exit::Internal
