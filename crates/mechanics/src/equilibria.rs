@@ -692,18 +692,28 @@ fn numeric_equilibria(
         }
         x
     };
-    let f = |y: &[f64]| -> Option<Vec<f64>> {
+    let residuals: Vec<Expr> = rows.iter().map(|i| rest.residuals[*i]).collect();
+    let jacobian: Vec<Expr> = rows
+        .iter()
+        .flat_map(|i| active.iter().map(move |k| rest.jacobian[*i][*k]))
+        .collect();
+    let residual_tape = CompiledRest::new(&residuals, rest, values);
+    let jacobian_tape = CompiledRest::new(&jacobian, rest, values);
+    let by_trees = |exprs: &[Expr], y: &[f64]| -> Option<Vec<f64>> {
         let x = full(y);
-        rows.iter()
-            .map(|i| eval_at(rest.residuals[*i], rest, &x, values))
+        exprs
+            .iter()
+            .map(|e| eval_at(*e, rest, &x, values))
             .collect()
     };
-    let j = |y: &[f64]| -> Option<Vec<f64>> {
-        let x = full(y);
-        rows.iter()
-            .flat_map(|i| active.iter().map(move |k| (*i, *k)))
-            .map(|(i, k)| eval_at(rest.jacobian[i][k], rest, &x, values))
-            .collect()
+    // The search evaluates these thousands of times: on compiled tapes where they compile.
+    let f = |y: &[f64]| match &residual_tape {
+        Some(tape) => tape.eval(&full(y)),
+        None => by_trees(&residuals, y),
+    };
+    let j = |y: &[f64]| match &jacobian_tape {
+        Some(tape) => tape.eval(&full(y)),
+        None => by_trees(&jacobian, y),
     };
     let search = numeric::roots::Search::new(
         active.iter().map(|i| bounds[*i]).collect(),
@@ -730,6 +740,51 @@ fn numeric_equilibria(
         Method::MultistartNewton
     };
     (found, method)
+}
+
+/// Rest expressions compiled to a tape whose inputs are the coordinates followed by the
+/// values of the parameters and inputs, with its buffers.
+struct CompiledRest {
+    tape: numeric::Tape,
+    /// The coordinates' values, then the parameters' (fixed for the search).
+    inputs: std::cell::RefCell<Vec<f64>>,
+    registers: std::cell::RefCell<Vec<f64>>,
+    coordinates: usize,
+}
+
+impl CompiledRest {
+    /// `None` when an expression does not compile (a function the tape lacks, a symbol
+    /// without a value): the caller then evaluates the trees.
+    fn new(exprs: &[Expr], rest: &RestEquations, values: &Values) -> Option<CompiledRest> {
+        let mut symbols = rest.symbols.clone();
+        let mut inputs = vec![0.0; symbols.len()];
+        for (name, value) in values {
+            if let Some(s) = Expr::symbol(name).as_symbol() {
+                if !symbols.contains(&s) {
+                    symbols.push(s);
+                    inputs.push(*value);
+                }
+            }
+        }
+        let tape = numeric::Tape::compile(exprs, &symbols).ok()?;
+        let registers = tape.registers();
+        Some(CompiledRest {
+            tape,
+            inputs: std::cell::RefCell::new(inputs),
+            registers: std::cell::RefCell::new(registers),
+            coordinates: rest.symbols.len(),
+        })
+    }
+
+    /// The values at the coordinates `x`; `None` when one is not finite, as a tree's would be.
+    fn eval(&self, x: &[f64]) -> Option<Vec<f64>> {
+        let mut inputs = self.inputs.borrow_mut();
+        inputs[..self.coordinates].copy_from_slice(x);
+        let mut out = vec![0.0; self.tape.output_count()];
+        self.tape
+            .eval(&inputs, &mut self.registers.borrow_mut(), &mut out);
+        out.iter().all(|v| v.is_finite()).then_some(out)
+    }
 }
 
 /// Whether two points are the same equilibrium (angles modulo 2π).
