@@ -12,6 +12,7 @@ use std::collections::HashMap;
 
 use cas::{solve_for, Condition, Expr, Matrix, Solved, Symbol};
 
+use crate::compiled_eval::CompiledExprs;
 use crate::equations::Equations;
 use crate::polynomial_rest::{real_roots, rest_polynomial, RestPolynomial};
 
@@ -697,8 +698,12 @@ fn numeric_equilibria(
         .iter()
         .flat_map(|i| active.iter().map(move |k| rest.jacobian[*i][*k]))
         .collect();
-    let residual_tape = CompiledRest::new(&residuals, rest, values);
-    let jacobian_tape = CompiledRest::new(&jacobian, rest, values);
+    let known: Vec<(Symbol, f64)> = values
+        .iter()
+        .filter_map(|(name, v)| Some((Expr::symbol(name).as_symbol()?, *v)))
+        .collect();
+    let compile = |exprs: &[Expr]| CompiledExprs::new(exprs, &rest.symbols, &known, &|_| None);
+    let (residual_tape, jacobian_tape) = (compile(&residuals), compile(&jacobian));
     let by_trees = |exprs: &[Expr], y: &[f64]| -> Option<Vec<f64>> {
         let x = full(y);
         exprs
@@ -740,51 +745,6 @@ fn numeric_equilibria(
         Method::MultistartNewton
     };
     (found, method)
-}
-
-/// Rest expressions compiled to a tape whose inputs are the coordinates followed by the
-/// values of the parameters and inputs, with its buffers.
-struct CompiledRest {
-    tape: numeric::Tape,
-    /// The coordinates' values, then the parameters' (fixed for the search).
-    inputs: std::cell::RefCell<Vec<f64>>,
-    registers: std::cell::RefCell<Vec<f64>>,
-    coordinates: usize,
-}
-
-impl CompiledRest {
-    /// `None` when an expression does not compile (a function the tape lacks, a symbol
-    /// without a value): the caller then evaluates the trees.
-    fn new(exprs: &[Expr], rest: &RestEquations, values: &Values) -> Option<CompiledRest> {
-        let mut symbols = rest.symbols.clone();
-        let mut inputs = vec![0.0; symbols.len()];
-        for (name, value) in values {
-            if let Some(s) = Expr::symbol(name).as_symbol() {
-                if !symbols.contains(&s) {
-                    symbols.push(s);
-                    inputs.push(*value);
-                }
-            }
-        }
-        let tape = numeric::Tape::compile(exprs, &symbols).ok()?;
-        let registers = tape.registers();
-        Some(CompiledRest {
-            tape,
-            inputs: std::cell::RefCell::new(inputs),
-            registers: std::cell::RefCell::new(registers),
-            coordinates: rest.symbols.len(),
-        })
-    }
-
-    /// The values at the coordinates `x`; `None` when one is not finite, as a tree's would be.
-    fn eval(&self, x: &[f64]) -> Option<Vec<f64>> {
-        let mut inputs = self.inputs.borrow_mut();
-        inputs[..self.coordinates].copy_from_slice(x);
-        let mut out = vec![0.0; self.tape.output_count()];
-        self.tape
-            .eval(&inputs, &mut self.registers.borrow_mut(), &mut out);
-        out.iter().all(|v| v.is_finite()).then_some(out)
-    }
 }
 
 /// Whether two points are the same equilibrium (angles modulo 2π).

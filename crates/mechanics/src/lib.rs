@@ -30,6 +30,7 @@
 #![warn(missing_docs)]
 
 pub mod canonical;
+mod compiled_eval;
 mod constraint_rank;
 mod equations;
 pub mod equilibria;

@@ -10,6 +10,7 @@
 
 use cas::{Expr, Symbol};
 
+use crate::compiled_eval::CompiledExprs;
 use crate::equations::Equations;
 
 /// What happens to a unilateral reaction along the motion from the initial state.
@@ -90,7 +91,7 @@ pub fn scan(
     let (q, h) = integral(equations)?;
     let q_symbol = Expr::coordinate(q).as_symbol()?;
     let qd_symbol = Expr::rate(q, 1).as_symbol()?;
-    let eval = |e: Expr, x: f64, v: f64| -> Option<f64> {
+    let by_tree = |e: Expr, x: f64, v: f64| -> Option<f64> {
         let env = |s: Symbol| {
             if s == q_symbol {
                 Some(x)
@@ -103,6 +104,16 @@ pub fn scan(
             }
         };
         e.eval(&env).ok().filter(|y| y.is_finite())
+    };
+    // The scan below evaluates both tens of thousands of times: on tapes where they compile.
+    let time = Expr::time().as_symbol()?;
+    let compile = |e: Expr| CompiledExprs::new(&[e], &[q_symbol, qd_symbol, time], &[], parameters);
+    let tapes = [(h, compile(h)), (reaction, compile(reaction))];
+    let eval = |e: Expr, x: f64, v: f64| -> Option<f64> {
+        match tapes.iter().find(|(t, _)| *t == e) {
+            Some((_, Some(tape))) => tape.eval_one(&[x, v, 0.0]),
+            _ => by_tree(e, x, v),
+        }
     };
     let (q0, qd0) = initial;
     let h0 = eval(h, q0, qd0)?;
