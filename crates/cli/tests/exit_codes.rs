@@ -165,6 +165,8 @@ fn output_that_cannot_be_written_is_five_not_a_panic() {
         vec!["eom", GOOD],
         vec!["equilibria", GOOD],
         vec!["simplify", "x"],
+        vec!["draw", GOOD],
+        vec!["animate", GOOD, "--t-end", "0.1"],
         vec!["simulate", GOOD, "--t-end", "0.1"],
         vec![
             "simulate", GOOD, "--t-end", "0.1", "--sweep", "k=10..20", "--steps", "1",
@@ -222,4 +224,34 @@ fn the_model_file_is_never_an_output() {
     ]);
     assert_eq!(code, Some(1), "{err}");
     assert_eq!(std::fs::read_to_string(&named).expect("reads"), before);
+}
+
+/// `draw` and `animate` (issue 16, after the contract was written) keep it too.
+#[test]
+fn drawing_and_animating_keep_the_contract() {
+    assert_eq!(code(&["draw", GOOD]).0, Some(0));
+    assert_eq!(code(&["animate", GOOD, "--t-end", "0.1"]).0, Some(0));
+    let bad = temp("bad-draw.lag", "coordinates x\nframe N\npoint P = y*N.x\n");
+    for args in [
+        vec!["draw", bad.as_str()],
+        vec!["draw", "examples/does-not-exist.lag"],
+        vec!["draw", GOOD, "--at", "nope=1"],
+        vec!["draw", GOOD, "--at", "t=soon"],
+        vec!["draw", GOOD, "--out", "figure.pdf"],
+        vec!["animate", bad.as_str()],
+        vec!["animate", GOOD, "--set", "nope=1"],
+        vec!["animate", GOOD, "--fps", "0"],
+        vec!["animate", GOOD, "--out", "movie.svg"],
+    ] {
+        let (code, err) = code(&args);
+        assert_eq!(code, Some(1), "{args:?}: {err}");
+        assert!(err.contains("error"), "{args:?}: {err}");
+    }
+    // `y` appears nowhere: the mass matrix is singular, so there is no motion to animate.
+    let singular = temp(
+        "singular-animate.lag",
+        "coordinates x, y\nparameters m = 1\nframe N\npoint P = x*N.x\nparticle P mass m\nsimulate to 1\n",
+    );
+    let (code, err) = code(&["animate", &singular]);
+    assert_eq!(code, Some(2), "{err}");
 }
