@@ -361,13 +361,11 @@ pub fn derive_without_first_integrals(system: &System) -> Result<Equations, Mech
     derive_all(system, true, false)
 }
 
-/// [`derive`]; with `check_mass_matrix` false a singular mass matrix is accepted (a released
-/// system for reactions is only evaluated on the constrained motion, never solved).
-pub(crate) fn derive_with(
-    system: &System,
-    check_mass_matrix: bool,
-) -> Result<Equations, MechanicsError> {
-    derive_all(system, check_mass_matrix, true)
+/// [`derive`] for a released system (reactions): a singular mass matrix is accepted and no
+/// first integral is looked for, since the released system is only evaluated on the
+/// constrained motion, never solved or integrated.
+pub(crate) fn derive_released(system: &System) -> Result<Equations, MechanicsError> {
+    derive_all(system, false, false)
 }
 
 /// [`derive_limited`] within the work limits of the symbolic core ([`cas::limited`]).

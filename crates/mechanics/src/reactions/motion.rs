@@ -5,7 +5,7 @@ use cas::{Expr, Matrix, SolveError, Symbol};
 
 use super::compare::sample;
 use super::ReactionError;
-use crate::equations::{derive_with, Equations};
+use crate::equations::{derive_released, Equations};
 use crate::system::{System, Vector};
 
 /// Terms an entry of the multiplier solve may reach: a course's systems stay far below (tens
@@ -158,7 +158,7 @@ pub(super) fn residuals(
     motion: &Motion,
     zero: &[(Expr, Expr)],
 ) -> Result<Vec<(String, Expr)>, ReactionError> {
-    let released = derive_with(without, false).map_err(|source| ReactionError::Mechanics {
+    let released = derive_released(without).map_err(|source| ReactionError::Mechanics {
         reaction: name.to_string(),
         source,
     })?;
