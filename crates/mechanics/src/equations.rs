@@ -106,7 +106,8 @@ pub struct FirstIntegral {
     pub conditions: Vec<Expr>,
 }
 
-/// Lagrange's equations of a system. Invariant: `mass_matrix` is n×n and non-singular,
+/// Lagrange's equations of a system. Invariant: `mass_matrix` is n×n and non-singular (or, with
+/// constraints kept by multipliers, `[M Aᵀ; A 0]` is: a coordinate without inertia that they fix),
 /// `forcing`, `lhs`, `generalized_forces` have n entries, n = `coordinates.len()`.
 #[derive(Clone, Debug)]
 pub struct Equations {
@@ -407,12 +408,20 @@ fn derive_limited(
     working_on(progress, None);
     let lagrangian = (kinetic - potential).normal();
     let rows = lagrange_rows(lagrangian, &forces, &vars, &coordinates)?;
-    if check_mass_matrix {
-        check_singular(&rows.mass_matrix, &coordinates)?;
-    }
     let (constraint_matrix, constraint_rhs, constraint_names) =
         constraint_rows(&kept, &vars, progress)?;
     working_on(progress, None);
+    if check_mass_matrix {
+        check_singular(&rows.mass_matrix, &coordinates).or_else(|error| {
+            // A coordinate without inertia of its own is well posed when the constraints
+            // kept with multipliers fix it: then `[M Aᵀ; A 0]` is regular though `M` is not.
+            if constrained_regular(&rows.mass_matrix, &constraint_matrix) {
+                Ok(())
+            } else {
+                Err(error)
+            }
+        })?;
+    }
     let constraint_rank = crate::constraint_rank::generic_rank(&system, &constraint_matrix);
     let accelerations = if coordinates.len() <= 2 && kept.is_empty() {
         explicit_accelerations(&rows.mass_matrix, &rows.forcing)
@@ -799,6 +808,27 @@ fn energy_integral(
         value: h.to_expr(),
         conditions,
     })
+}
+
+/// Whether the constrained system's matrix `[M Aᵀ; A 0]` is regular at generic points: the
+/// accelerations and multipliers are then determined though `M` alone may be singular.
+fn constrained_regular(mass: &[Vec<Expr>], constraints: &[Vec<Expr>]) -> bool {
+    if constraints.is_empty() {
+        return false;
+    }
+    let (n, m) = (mass.len(), constraints.len());
+    let mut kkt: Vec<Vec<Expr>> = Vec::with_capacity(n + m);
+    for (i, row) in mass.iter().enumerate() {
+        let mut full = row.clone();
+        full.extend(constraints.iter().map(|a| a[i]));
+        kkt.push(full);
+    }
+    for a in constraints {
+        let mut full = a.clone();
+        full.extend(std::iter::repeat_n(Expr::zero(), m));
+        kkt.push(full);
+    }
+    regular_at_sample_points(&kkt)
 }
 
 /// Whether `M` is regular at one of a few pseudo-random points (every symbol a value in
