@@ -63,7 +63,7 @@ pub fn animation(
         unmarked: Vec::new(),
     };
     let view = view::fit(&all, plane);
-    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::write(s, &view));
+    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::frame(s, &view));
     let mut lo = (f64::INFINITY, f64::INFINITY);
     let mut hi = (f64::NEG_INFINITY, f64::NEG_INFINITY);
     for w in &written {
@@ -182,13 +182,27 @@ fn js_string(s: &str) -> String {
     out
 }
 
-fn tenth(x: f64) -> String {
-    let s = format!("{x:.1}");
-    let s = s.strip_suffix(".0").unwrap_or(&s).to_owned();
-    if s == "-0" {
-        "0".to_owned()
-    } else {
-        s
+/// Appends `x` to a tenth (`{x:.1}`), without a trailing `.0` and with `-0` as `0`.
+fn tenth(out: &mut String, x: f64) {
+    if let Some((negative, n)) = svg::fixed(x, 10) {
+        if negative && n > 0 {
+            out.push('-');
+        }
+        let _ = if n % 10 == 0 {
+            write!(out, "{}", n / 10)
+        } else {
+            write!(out, "{}.{}", n / 10, n % 10)
+        };
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{x:.1}");
+    if out.ends_with(".0") {
+        out.truncate(out.len() - 2);
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
     }
 }
 
@@ -244,8 +258,14 @@ fn frame_data(written: &[svg::Written]) -> (String, String) {
             data.push(',');
         }
         if pieces == template {
-            let list: Vec<String> = numbers.iter().map(|x| tenth(*x)).collect();
-            let _ = write!(data, "[{}]", list.join(","));
+            data.push('[');
+            for (i, x) in numbers.iter().enumerate() {
+                if i > 0 {
+                    data.push(',');
+                }
+                tenth(&mut data, *x);
+            }
+            data.push(']');
         } else {
             data.push_str(&js_string(&w.inner));
         }
@@ -356,6 +376,33 @@ show(0);requestAnimationFrame(tick);
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tenths_are_written_as_format_writes_them() {
+        let reference = |x: f64| {
+            let s = format!("{x:.1}");
+            let s = s.strip_suffix(".0").unwrap_or(&s).to_owned();
+            if s == "-0" {
+                "0".to_owned()
+            } else {
+                s
+            }
+        };
+        // Every number a frame holds (two decimals, as written), and halves of a tenth.
+        for k in -300_000..300_000 {
+            let x: f64 = format!("{:.2}", f64::from(k) / 100.0)
+                .parse()
+                .expect("a number");
+            let mut written = String::new();
+            tenth(&mut written, x);
+            assert_eq!(written, reference(x), "{x}");
+        }
+        for x in [0.05, -0.05, 0.25, -0.25, 1e6, -1e7, 0.0, -0.0, f64::NAN] {
+            let mut written = String::new();
+            tenth(&mut written, x);
+            assert_eq!(written, reference(x), "{x}");
+        }
+    }
 
     #[test]
     fn numbers_inside_tags_are_split_out_and_text_is_kept() {

@@ -126,6 +126,7 @@ pub struct Request {
 #[must_use]
 pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
     let mut placed: Vec<Rect> = Vec::with_capacity(requests.len());
+    let directions = directions();
     let bottom = obstacles
         .iter()
         .map(|o| match *o {
@@ -133,9 +134,10 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
             Obstacle::Circle(c, r) => c.1 + r,
         })
         .fold(0.0, f64::max);
+    let bounded: Vec<(_, &Obstacle)> = obstacles.iter().map(|o| (o.bounds(), o)).collect();
     for request in requests {
         // Only the obstacles near the candidates can touch one: the others are not counted.
-        let region = candidates(request).reduce(|a, b| {
+        let region = candidates(request, &directions).reduce(|a, b| {
             let (x, y) = (a.x.min(b.x), a.y.min(b.y));
             Rect {
                 x,
@@ -144,17 +146,22 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
                 h: (a.y + a.h).max(b.y + b.h) - y,
             }
         });
-        let near: Vec<(_, &Obstacle)> = obstacles
+        let near: Vec<(_, &Obstacle)> = bounded
             .iter()
-            .map(|o| (o.bounds(), o))
             .filter(|(b, _)| region.is_some_and(|r| reaches(*b, &r)))
+            .copied()
             .collect();
         // The first candidate touching fewest obstacles; a clear one ends the search.
         let mut best: Option<(usize, Rect)> = None;
-        for r in candidates(request).filter(|r| !placed.iter().any(|p| p.overlaps(r))) {
+        for r in candidates(request, &directions).filter(|r| !placed.iter().any(|p| p.overlaps(r)))
+        {
+            // Counted only as far as the fewest so far: a candidate that reaches it is not
+            // taken, so the rest of its count would change nothing.
+            let enough = best.map_or(usize::MAX, |(fewest, _)| fewest);
             let hits = near
                 .iter()
                 .filter(|(b, o)| reaches(*b, &r) && o.meets(&r))
+                .take(enough)
                 .count();
             if best.is_none_or(|(fewest, _)| hits < fewest) {
                 best = Some((hits, r));
@@ -172,17 +179,31 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
     placed
 }
 
+/// The sines and cosines of the 16 directions of [`candidates`], from the upper right
+/// clockwise (computed once per [`place`], not once per candidate).
+type Directions = [(f64, f64); 16];
+
+fn directions() -> Directions {
+    let mut table = [(0.0, 0.0); 16];
+    for (k, slot) in table.iter_mut().enumerate() {
+        let angle = std::f64::consts::FRAC_PI_4 - k as f64 * std::f64::consts::PI / 8.0;
+        *slot = angle.sin_cos();
+    }
+    table
+}
+
 /// Candidate boxes around the anchor: rings of growing distance, 16 directions each, the
 /// upper right first (where textbooks put a point's name). The first without any obstacle
 /// wins, so the nearest clear place is taken.
-fn candidates(request: &Request) -> impl Iterator<Item = Rect> + '_ {
+fn candidates<'a>(
+    request: &'a Request,
+    directions: &'a Directions,
+) -> impl Iterator<Item = Rect> + 'a {
     const RINGS: [f64; 9] = [6.0, 12.0, 20.0, 30.0, 44.0, 62.0, 86.0, 116.0, 150.0];
     let (w, h) = request.size;
     let (ax, ay) = request.anchor;
     RINGS.iter().flat_map(move |&d| {
-        (0..16).map(move |k| {
-            let angle = std::f64::consts::FRAC_PI_4 - k as f64 * std::f64::consts::PI / 8.0;
-            let (s, c) = angle.sin_cos();
+        directions.iter().map(move |&(s, c)| {
             // The box's nearest edge point lies on the ray at distance d.
             let cx = ax + c * (d + 0.5 * w * c.abs());
             let cy = ay - s * (d + 0.5 * h * s.abs());
