@@ -59,7 +59,8 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
 }
 
 /// An animation's frame: [`Written::inner`], the labels and the bounds of `scene` in `view`,
-/// as [`write`] gives them, without the whole SVG's text or the shapes of a raster.
+/// as [`write`] gives them, without the whole SVG's text, the shapes of a raster or the
+/// labels that touch the drawing.
 pub(crate) fn frame(scene: &Scene, view: &View) -> Written {
     written(scene, view, false)
 }
@@ -113,7 +114,8 @@ fn written(scene: &Scene, view: &View, whole: bool) -> Written {
             });
         }
         boxes.push((label.id.clone(), *r));
-        if w.obstacles.iter().any(|o| o.meets(r)) {
+        // Only a figure reports the labels that touch its drawing.
+        if whole && w.obstacles.iter().any(|o| o.meets(r)) {
             touching.push(label.id.clone());
         }
     }
@@ -233,29 +235,7 @@ struct Number(f64);
 impl std::fmt::Display for Number {
     fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         if let Some((negative, n)) = fixed(self.0, 100) {
-            // The digits from the last, into a buffer long enough for `-999999.99`.
-            let mut buffer = [0u8; 12];
-            let mut at = buffer.len();
-            let mut rest = n;
-            let mut count = 0;
-            while count < 3 || rest > 0 {
-                if count == 2 {
-                    at -= 1;
-                    buffer[at] = b'.';
-                }
-                at -= 1;
-                // A single decimal digit.
-                #[allow(clippy::cast_possible_truncation)]
-                let digit = (rest % 10) as u8;
-                buffer[at] = b'0' + digit;
-                rest /= 10;
-                count += 1;
-            }
-            if negative && n > 0 {
-                at -= 1;
-                buffer[at] = b'-';
-            }
-            return out.write_str(std::str::from_utf8(&buffer[at..]).map_err(|_| std::fmt::Error)?);
+            return out.write_str(decimal(&mut [0; 24], negative && n > 0, n, 2));
         }
         // A negative number whose magnitude is under 0.005 (the double nearest 0.005 is just
         // above it, so it rounds up) would print as `-0.00`.
@@ -265,6 +245,33 @@ impl std::fmt::Display for Number {
             write!(out, "{:.2}", self.0)
         }
     }
+}
+
+/// The text of `steps / 10^decimals` with `decimals` digits after the point (none and no point
+/// for 0), a minus sign first when `negative`, written into the end of `buffer`.
+pub(crate) fn decimal(buffer: &mut [u8; 24], negative: bool, steps: u64, decimals: usize) -> &str {
+    let mut at = buffer.len();
+    let mut rest = steps;
+    let mut count = 0;
+    while count <= decimals || rest > 0 {
+        if count == decimals && decimals > 0 {
+            at -= 1;
+            buffer[at] = b'.';
+        }
+        at -= 1;
+        // A single decimal digit.
+        #[allow(clippy::cast_possible_truncation)]
+        let digit = (rest % 10) as u8;
+        buffer[at] = b'0' + digit;
+        rest /= 10;
+        count += 1;
+    }
+    if negative {
+        at -= 1;
+        buffer[at] = b'-';
+    }
+    // Only ASCII digits, a point and a minus sign were written.
+    std::str::from_utf8(&buffer[at..]).unwrap_or_default()
 }
 
 /// `|x|` rounded to a multiple of `1/per_unit` (`per_unit` a power of ten), as the count of
