@@ -115,14 +115,6 @@ impl<'m> Sampler<'m> {
         }
     }
 
-    /// The value of `expr` at `coordinates` and `time`.
-    ///
-    /// # Errors
-    /// [`DrawError::Evaluate`] when a value it needs is missing.
-    pub fn value(&self, expr: &Expr, coordinates: &[f64], time: f64) -> Result<Value, DrawError> {
-        self.read(&self.evaluation(coordinates, time), expr)
-    }
-
     /// A scalar expression at the configuration drawn (`None` for a vector).
     ///
     /// # Errors
