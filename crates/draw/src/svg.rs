@@ -111,6 +111,8 @@ fn written(scene: &Scene, view: &View, whole: bool) -> Written {
                 at: (r.x + 0.5 * r.w, r.y + r.h - 0.25 * FONT),
                 text: label.text.clone(),
                 colour: class_colour(label.class),
+                // The style sheet sets coordinates in italics.
+                oblique: label.class == "coordinate",
             });
         }
         boxes.push((label.id.clone(), *r));
