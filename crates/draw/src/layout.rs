@@ -303,9 +303,9 @@ impl<'o> Grid<'o> {
 
 /// The cell a distance `d` from the grid's origin falls in (0 before it).
 fn cell(d: f64, side: f64) -> usize {
-    // Not negative, and bounded by the grid's extent over its side (at most 128) or clamped.
+    // Not negative and bounded (a NaN converts to 0).
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    let k = (d / side).floor().max(0.0).min(1e6) as usize;
+    let k = (d / side).floor().clamp(0.0, 1e6) as usize;
     k
 }
 

@@ -285,7 +285,7 @@ pub(crate) fn decimal(buffer: &mut [u8; 24], negative: bool, steps: u64, decimal
 /// most of the cost of writing an animation's frames; this is a few multiplications.
 pub(crate) fn fixed(x: f64, per_unit: u32) -> Option<(bool, u64)> {
     let magnitude = x.abs();
-    if !(magnitude < 1e6) {
+    if magnitude.is_nan() || magnitude >= 1e6 {
         return None;
     }
     let scaled = magnitude * f64::from(per_unit);
