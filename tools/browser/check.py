@@ -258,6 +258,9 @@ def other_animations(checks, browser, binary, work):
         ("spherical-pendulum", ["--t-end", "2"]),
         ("double-pendulum", ["--mode", "2"]),
         ("seed/7.3-gears-pendulum", ["--mode", "2", "--trace", "Q"]),
+        # Modes about a pole of the coordinates (the mass matrix singular there).
+        ("spherical-pendulum", ["--mode", "1", "--trace", "P"]),
+        ("heavy-symmetric-top", ["--mode", "2"]),
     ]
     for model, flags in cases:
         name = os.path.basename(model)

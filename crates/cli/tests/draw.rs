@@ -260,3 +260,30 @@ fn solve_puts_the_figure_at_the_top_and_links_the_animation() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn animate_mode_at_a_pole_of_the_coordinates_and_without_a_rest() {
+    // The spherical pendulum's bottom is a pole of its coordinates (φ moves nothing there):
+    // its mode is the swing, and the second is refused with the reason.
+    let o = lagrange(&["animate", "examples/spherical-pendulum.lag", "--mode", "1"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("mode 1, ω = 3.1321 rad/s"));
+    let o = lagrange(&["animate", "examples/spherical-pendulum.lag", "--mode", "2"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("no mode 2") && stderr(&o).contains("moving phi alone moves nothing"),
+        "{}",
+        stderr(&o)
+    );
+    let o = lagrange(&["animate", "examples/heavy-symmetric-top.lag", "--mode", "2"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("mode 2, ω = 11.0736 rad/s"));
+    let o = lagrange(&[
+        "animate",
+        "examples/rolling-disk-incline.lag",
+        "--mode",
+        "1",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("has no equilibrium"), "{}", stderr(&o));
+}

@@ -63,7 +63,7 @@ pub fn animation(
         unmarked: Vec::new(),
     };
     let view = view::fit(&all, plane);
-    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::write(s, &view));
+    let written: Vec<svg::Written> = in_parallel(&scenes, |s| svg::frame(s, &view));
     let mut lo = (f64::INFINITY, f64::INFINITY);
     let mut hi = (f64::NEG_INFINITY, f64::NEG_INFINITY);
     for w in &written {
@@ -129,8 +129,9 @@ fn trace(scenes: &[Scene], name: &str, view: &view::View) -> Vec<Pt> {
         .collect()
 }
 
-/// A frame's markup split into the text between numbers inside tags, and those numbers.
-fn split(markup: &str) -> (Vec<&str>, Vec<f64>) {
+/// A frame's markup split into the text between numbers inside tags, and those numbers (as
+/// written: digits with at most one point, a minus sign first for a negative one).
+fn split(markup: &str) -> (Vec<&str>, Vec<&str>) {
     let bytes = markup.as_bytes();
     let mut pieces = Vec::new();
     let mut numbers = Vec::new();
@@ -152,9 +153,11 @@ fn split(markup: &str) -> (Vec<&str>, Vec<f64>) {
             while j < bytes.len() && (bytes[j].is_ascii_digit() || bytes[j] == b'.') {
                 j += 1;
             }
-            if let Ok(x) = markup[i..j].parse::<f64>() {
+            // Of these characters, what `str::parse::<f64>` reads as a number: digits with
+            // one point at most.
+            if markup[i..j].bytes().filter(|&b| b == b'.').count() <= 1 {
                 pieces.push(&markup[start..i]);
-                numbers.push(x);
+                numbers.push(&markup[i..j]);
                 start = j;
             }
             i = j;
@@ -182,13 +185,58 @@ fn js_string(s: &str) -> String {
     out
 }
 
-fn tenth(x: f64) -> String {
-    let s = format!("{x:.1}");
-    let s = s.strip_suffix(".0").unwrap_or(&s).to_owned();
-    if s == "-0" {
-        "0".to_owned()
+/// Appends the number written as `text` (as [`split`] finds it) to a tenth, as [`tenth`]
+/// writes the number it reads. Straight from the digits when the hundredths do not make a
+/// tie (a written number with at most two decimals lies within 10⁻¹⁵ of its double, and the
+/// tenth of that double is then the tenth of the digits); else through the double.
+fn tenth_of(out: &mut String, text: &str) {
+    let (negative, unsigned) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text),
+    };
+    let (whole, fraction) = unsigned.split_once('.').unwrap_or((unsigned, ""));
+    let digits = fraction.as_bytes();
+    let tie = digits.len() == 2 && digits[1] == b'5';
+    if whole.len() <= 9 && digits.len() <= 2 && !tie {
+        if let Ok(units) = whole.parse::<u64>() {
+            let tenths = digits.first().map_or(0, |d| u64::from(d - b'0'));
+            let up = u64::from(digits.get(1).is_some_and(|d| *d > b'5'));
+            let n = units * 10 + tenths + up;
+            write_tenths(out, negative && n > 0, n);
+            return;
+        }
+    }
+    match text.parse::<f64>() {
+        Ok(x) => tenth(out, x),
+        Err(_) => out.push_str(text),
+    }
+}
+
+/// `n` tenths, without a trailing `.0`.
+fn write_tenths(out: &mut String, negative: bool, n: u64) {
+    let mut buffer = [0; 24];
+    let text = if n % 10 == 0 {
+        svg::decimal(&mut buffer, negative, n / 10, 0)
     } else {
-        s
+        svg::decimal(&mut buffer, negative, n, 1)
+    };
+    out.push_str(text);
+}
+
+/// Appends `x` to a tenth (`{x:.1}`), without a trailing `.0` and with `-0` as `0`.
+fn tenth(out: &mut String, x: f64) {
+    if let Some((negative, n)) = svg::fixed(x, 10) {
+        write_tenths(out, negative && n > 0, n);
+        return;
+    }
+    let start = out.len();
+    let _ = write!(out, "{x:.1}");
+    if out.ends_with(".0") {
+        out.truncate(out.len() - 2);
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
     }
 }
 
@@ -244,8 +292,14 @@ fn frame_data(written: &[svg::Written]) -> (String, String) {
             data.push(',');
         }
         if pieces == template {
-            let list: Vec<String> = numbers.iter().map(|x| tenth(*x)).collect();
-            let _ = write!(data, "[{}]", list.join(","));
+            data.push('[');
+            for (i, x) in numbers.iter().enumerate() {
+                if i > 0 {
+                    data.push(',');
+                }
+                tenth_of(&mut data, x);
+            }
+            data.push(']');
         } else {
             data.push_str(&js_string(&w.inner));
         }
@@ -358,15 +412,63 @@ mod tests {
     use super::*;
 
     #[test]
+    fn tenths_are_written_as_format_writes_them() {
+        let reference = |x: f64| {
+            let s = format!("{x:.1}");
+            let s = s.strip_suffix(".0").unwrap_or(&s).to_owned();
+            if s == "-0" {
+                "0".to_owned()
+            } else {
+                s
+            }
+        };
+        // Every number a frame holds (two decimals, as written), and halves of a tenth.
+        for k in -300_000..300_000 {
+            let x: f64 = format!("{:.2}", f64::from(k) / 100.0)
+                .parse()
+                .expect("a number");
+            let mut written = String::new();
+            tenth(&mut written, x);
+            assert_eq!(written, reference(x), "{x}");
+            let text = format!("{:.2}", f64::from(k) / 100.0);
+            let mut from_text = String::new();
+            tenth_of(&mut from_text, &text);
+            assert_eq!(from_text, reference(x), "{text}");
+        }
+        for text in [
+            "7",
+            "-7",
+            "0",
+            "-0",
+            "12.3",
+            "-0.04",
+            "-0.05",
+            "-0.06",
+            "999999.99",
+            "1.2.3",
+        ] {
+            let mut from_text = String::new();
+            tenth_of(&mut from_text, text);
+            let expected = text.parse().map_or(text.to_owned(), reference);
+            assert_eq!(from_text, expected, "{text}");
+        }
+        for x in [0.05, -0.05, 0.25, -0.25, 1e6, -1e7, 0.0, -0.0, f64::NAN] {
+            let mut written = String::new();
+            tenth(&mut written, x);
+            assert_eq!(written, reference(x), "{x}");
+        }
+    }
+
+    #[test]
     fn numbers_inside_tags_are_split_out_and_text_is_kept() {
         let (pieces, numbers) =
             split(r#"<line x1="1.25" y1="-3.50"/><text x="2.00">P1 0.50</text>"#);
-        assert_eq!(numbers, vec![1.25, -3.5, 2.0]);
+        assert_eq!(numbers, vec!["1.25", "-3.50", "2.00"]);
         let mut back = String::new();
         for (i, p) in pieces.iter().enumerate() {
             back.push_str(p);
             if let Some(x) = numbers.get(i) {
-                back.push_str(&format!("{x:.2}"));
+                back.push_str(x);
             }
         }
         assert_eq!(

@@ -126,6 +126,7 @@ pub struct Request {
 #[must_use]
 pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
     let mut placed: Vec<Rect> = Vec::with_capacity(requests.len());
+    let directions = directions();
     let bottom = obstacles
         .iter()
         .map(|o| match *o {
@@ -133,29 +134,16 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
             Obstacle::Circle(c, r) => c.1 + r,
         })
         .fold(0.0, f64::max);
+    let mut grid = Grid::new(obstacles);
     for request in requests {
-        // Only the obstacles near the candidates can touch one: the others are not counted.
-        let region = candidates(request).reduce(|a, b| {
-            let (x, y) = (a.x.min(b.x), a.y.min(b.y));
-            Rect {
-                x,
-                y,
-                w: (a.x + a.w).max(b.x + b.w) - x,
-                h: (a.y + a.h).max(b.y + b.h) - y,
-            }
-        });
-        let near: Vec<(_, &Obstacle)> = obstacles
-            .iter()
-            .map(|o| (o.bounds(), o))
-            .filter(|(b, _)| region.is_some_and(|r| reaches(*b, &r)))
-            .collect();
         // The first candidate touching fewest obstacles; a clear one ends the search.
         let mut best: Option<(usize, Rect)> = None;
-        for r in candidates(request).filter(|r| !placed.iter().any(|p| p.overlaps(r))) {
-            let hits = near
-                .iter()
-                .filter(|(b, o)| reaches(*b, &r) && o.meets(&r))
-                .count();
+        for r in candidates(request, &directions).filter(|r| !placed.iter().any(|p| p.overlaps(r)))
+        {
+            // Counted only as far as the fewest so far: a candidate that reaches it is not
+            // taken, so the rest of its count would change nothing.
+            let enough = best.map_or(usize::MAX, |(fewest, _)| fewest);
+            let hits = grid.hits(&r, enough);
             if best.is_none_or(|(fewest, _)| hits < fewest) {
                 best = Some((hits, r));
             }
@@ -172,17 +160,180 @@ pub fn place(requests: &[Request], obstacles: &[Obstacle]) -> Vec<Rect> {
     placed
 }
 
+/// The obstacles sorted into square cells of the page by their bounding boxes, so that a
+/// candidate box is tested only against the obstacles in the cells it covers (a drawing has
+/// hundreds of strokes; a label's box is near a few).
+struct Grid<'o> {
+    obstacles: &'o [Obstacle],
+    bounds: Vec<((f64, f64), (f64, f64))>,
+    /// The page position of the first cell's corner, and a cell's side.
+    origin: (f64, f64),
+    side: f64,
+    columns: usize,
+    rows: usize,
+    /// The obstacles (indices) whose box reaches each cell, row by row.
+    cells: Vec<Vec<usize>>,
+    /// Obstacles without a finite box (tested against every candidate).
+    loose: Vec<usize>,
+    /// The query that last counted each obstacle, so that one met in several cells counts
+    /// once.
+    seen: Vec<u32>,
+    query: u32,
+}
+
+impl<'o> Grid<'o> {
+    /// Cells of at least 24 pixels, at most 128 a side.
+    fn new(obstacles: &'o [Obstacle]) -> Grid<'o> {
+        let bounds: Vec<_> = obstacles.iter().map(Obstacle::bounds).collect();
+        let finite = |b: &((f64, f64), (f64, f64))| {
+            [b.0 .0, b.0 .1, b.1 .0, b.1 .1]
+                .iter()
+                .all(|x| x.is_finite())
+        };
+        let (mut lo, mut hi) = (
+            (f64::INFINITY, f64::INFINITY),
+            (f64::NEG_INFINITY, f64::NEG_INFINITY),
+        );
+        for b in bounds.iter().filter(|b| finite(b)) {
+            lo = (lo.0.min(b.0 .0), lo.1.min(b.0 .1));
+            hi = (hi.0.max(b.1 .0), hi.1.max(b.1 .1));
+        }
+        let extent = if lo.0.is_finite() {
+            (hi.0 - lo.0).max(hi.1 - lo.1)
+        } else {
+            0.0
+        };
+        let side = (extent / 128.0).max(24.0);
+        let origin = if lo.0.is_finite() { lo } else { (0.0, 0.0) };
+        let count = |span: f64| cell(span, side) + 1;
+        let (columns, rows) = if lo.0.is_finite() {
+            (count(hi.0 - lo.0), count(hi.1 - lo.1))
+        } else {
+            (1, 1)
+        };
+        let mut grid = Grid {
+            obstacles,
+            bounds,
+            origin,
+            side,
+            columns,
+            rows,
+            cells: vec![Vec::new(); columns * rows],
+            loose: Vec::new(),
+            seen: vec![0; obstacles.len()],
+            query: 0,
+        };
+        for i in 0..obstacles.len() {
+            let b = grid.bounds[i];
+            if finite(&b) {
+                let ((c0, c1), (r0, r1)) = grid.span(b.0, b.1);
+                for row in r0..=r1 {
+                    for column in c0..=c1 {
+                        grid.cells[row * grid.columns + column].push(i);
+                    }
+                }
+            } else {
+                grid.loose.push(i);
+            }
+        }
+        grid
+    }
+
+    /// The columns and rows (first and last) that the box `lo`–`hi` covers, clamped to the
+    /// grid.
+    fn span(&self, lo: (f64, f64), hi: (f64, f64)) -> ((usize, usize), (usize, usize)) {
+        let at = |x: f64, o: f64, n: usize| cell(x - o, self.side).min(n - 1);
+        (
+            (
+                at(lo.0, self.origin.0, self.columns),
+                at(hi.0, self.origin.0, self.columns),
+            ),
+            (
+                at(lo.1, self.origin.1, self.rows),
+                at(hi.1, self.origin.1, self.rows),
+            ),
+        )
+    }
+
+    /// How many obstacles touch `r`, counted up to `enough`.
+    fn hits(&mut self, r: &Rect, enough: usize) -> usize {
+        self.query = self.query.wrapping_add(1);
+        if self.query == 0 {
+            self.seen.fill(0);
+            self.query = 1;
+        }
+        let mut hits = 0;
+        let touches =
+            |grid: &Grid<'_>, i: usize| reaches(grid.bounds[i], r) && grid.obstacles[i].meets(r);
+        for k in 0..self.loose.len() {
+            if hits >= enough {
+                return hits;
+            }
+            if touches(self, self.loose[k]) {
+                hits += 1;
+            }
+        }
+        let (lo, hi) = ((r.x, r.y), (r.x + r.w, r.y + r.h));
+        // A box wholly beyond the grid's edge meets no obstacle with a finite box.
+        let outside =
+            hi.0 < self.origin.0 || hi.1 < self.origin.1 || lo.0.is_nan() || lo.1.is_nan();
+        if outside {
+            return hits;
+        }
+        let ((c0, c1), (r0, r1)) = self.span(lo, hi);
+        for row in r0..=r1 {
+            for column in c0..=c1 {
+                for k in 0..self.cells[row * self.columns + column].len() {
+                    if hits >= enough {
+                        return hits;
+                    }
+                    let i = self.cells[row * self.columns + column][k];
+                    if self.seen[i] != self.query {
+                        self.seen[i] = self.query;
+                        if touches(self, i) {
+                            hits += 1;
+                        }
+                    }
+                }
+            }
+        }
+        hits
+    }
+}
+
+/// The cell a distance `d` from the grid's origin falls in (0 before it).
+fn cell(d: f64, side: f64) -> usize {
+    // Not negative and bounded (a NaN converts to 0).
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let k = (d / side).floor().clamp(0.0, 1e6) as usize;
+    k
+}
+
+/// The sines and cosines of the 16 directions of [`candidates`], from the upper right
+/// clockwise (computed once per [`place`], not once per candidate).
+type Directions = [(f64, f64); 16];
+
+fn directions() -> Directions {
+    let mut table = [(0.0, 0.0); 16];
+    for (k, slot) in table.iter_mut().enumerate() {
+        let angle = std::f64::consts::FRAC_PI_4 - k as f64 * std::f64::consts::PI / 8.0;
+        *slot = angle.sin_cos();
+    }
+    table
+}
+
 /// Candidate boxes around the anchor: rings of growing distance, 16 directions each, the
 /// upper right first (where textbooks put a point's name). The first without any obstacle
 /// wins, so the nearest clear place is taken.
-fn candidates(request: &Request) -> impl Iterator<Item = Rect> + '_ {
+fn candidates<'a>(
+    request: &'a Request,
+    directions: &'a Directions,
+) -> impl Iterator<Item = Rect> + 'a {
     const RINGS: [f64; 9] = [6.0, 12.0, 20.0, 30.0, 44.0, 62.0, 86.0, 116.0, 150.0];
     let (w, h) = request.size;
     let (ax, ay) = request.anchor;
     RINGS.iter().flat_map(move |&d| {
-        (0..16).map(move |k| {
-            let angle = std::f64::consts::FRAC_PI_4 - k as f64 * std::f64::consts::PI / 8.0;
-            let (s, c) = angle.sin_cos();
+        directions.iter().map(move |&(s, c)| {
             // The box's nearest edge point lies on the ray at distance d.
             let cx = ax + c * (d + 0.5 * w * c.abs());
             let cy = ay - s * (d + 0.5 * h * s.abs());

@@ -4,7 +4,7 @@
 //! (anti-aliased strokes and fills) and the labels with the bundled DejaVu Sans through
 //! `ab_glyph`, so the picture is the SVG's, drawn by the same code, at any resolution.
 
-use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
+use ab_glyph::{Font, FontRef, OutlineCurve, PxScale, ScaleFont};
 use tiny_skia::{
     FillRule, LineCap, Paint as SkiaPaint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
 };
@@ -44,6 +44,9 @@ pub(crate) enum Shape {
         text: String,
         /// Its colour.
         colour: Colour,
+        /// Slanted, as the SVG's italic (the bundled face has no italic: the upright glyphs'
+        /// outlines are sheared, as a browser does for a face without one).
+        oblique: bool,
     },
 }
 
@@ -188,9 +191,18 @@ pub(crate) fn png(
                     draw(&mut pixmap, &path, paint, transform);
                 }
             }
-            Shape::Text { at, text, colour } => {
+            Shape::Text {
+                at,
+                text,
+                colour,
+                oblique,
+            } => {
                 let at = ((at.0 - lo.0) * scale, (at.1 - lo.1) * scale);
-                label(&mut pixmap, &font, at, text, *colour, 14.0 * scale);
+                if *oblique {
+                    slanted(&mut pixmap, &font, at, text, *colour, 14.0 * scale);
+                } else {
+                    label(&mut pixmap, &font, at, text, *colour, 14.0 * scale);
+                }
             }
         }
     }
@@ -240,9 +252,17 @@ fn draw(pixmap: &mut Pixmap, path: &tiny_skia::Path, paint: &Paint, transform: T
     }
 }
 
-/// Paints `text` centred on `at.0` with its baseline at `at.1`, blending each glyph's coverage.
-fn label(pixmap: &mut Pixmap, font: &FontRef<'_>, at: Pt, text: &str, colour: Colour, size: f64) {
-    let scaled = font.as_scaled(PxScale::from(size as f32));
+/// The shear of the slanted labels: x moves right by this much per unit of height, about
+/// 11°, the slant of DejaVu Sans Oblique (which a browser uses for the SVG's italic when it
+/// has it).
+const SLANT: f32 = 0.2;
+
+/// Each glyph of `text` in the face at `scaled`, with its pen position from the left (kerning
+/// included), and the whole advance.
+fn glyphs<F: Font, S: ScaleFont<F>>(
+    scaled: &S,
+    text: &str,
+) -> (Vec<(ab_glyph::GlyphId, f32)>, f32) {
     let mut advance = 0.0f32;
     let mut glyphs = Vec::with_capacity(text.len());
     let mut previous = None;
@@ -255,6 +275,75 @@ fn label(pixmap: &mut Pixmap, font: &FontRef<'_>, at: Pt, text: &str, colour: Co
         advance += scaled.h_advance(id);
         previous = Some(id);
     }
+    (glyphs, advance)
+}
+
+/// Paints `text` as [`label`] does, its glyphs' outlines sheared by [`SLANT`] about the
+/// baseline and filled anti-aliased (non-zero winding, as TrueType outlines are drawn).
+fn slanted(pixmap: &mut Pixmap, font: &FontRef<'_>, at: Pt, text: &str, colour: Colour, size: f64) {
+    let scaled = font.as_scaled(PxScale::from(size as f32));
+    let (glyphs, advance) = glyphs(&scaled, text);
+    let (h, v) = (scaled.h_scale_factor(), scaled.v_scale_factor());
+    let (left, baseline) = (at.0 as f32 - advance / 2.0, at.1 as f32);
+    let mut builder = PathBuilder::new();
+    for (id, x) in glyphs {
+        let Some(outline) = font.outline(id) else {
+            continue;
+        };
+        // Font units, y up, to page pixels, y down, sheared to the right with height.
+        let page = |p: ab_glyph::Point| (left + x + h * p.x + SLANT * v * p.y, baseline - v * p.y);
+        let mut end: Option<ab_glyph::Point> = None;
+        for curve in &outline.curves {
+            let (first, last) = match curve {
+                OutlineCurve::Line(a, b)
+                | OutlineCurve::Quad(a, _, b)
+                | OutlineCurve::Cubic(a, _, _, b) => (*a, *b),
+            };
+            if end != Some(first) {
+                if end.is_some() {
+                    builder.close();
+                }
+                let (x0, y0) = page(first);
+                builder.move_to(x0, y0);
+            }
+            match curve {
+                OutlineCurve::Line(_, b) => {
+                    let (x1, y1) = page(*b);
+                    builder.line_to(x1, y1);
+                }
+                OutlineCurve::Quad(_, c, b) => {
+                    let ((cx, cy), (x1, y1)) = (page(*c), page(*b));
+                    builder.quad_to(cx, cy, x1, y1);
+                }
+                OutlineCurve::Cubic(_, c, d, b) => {
+                    let ((cx, cy), (dx, dy), (x1, y1)) = (page(*c), page(*d), page(*b));
+                    builder.cubic_to(cx, cy, dx, dy, x1, y1);
+                }
+            }
+            end = Some(last);
+        }
+        if end.is_some() {
+            builder.close();
+        }
+    }
+    if let Some(path) = builder.finish() {
+        let mut paint = SkiaPaint::default();
+        paint.set_color_rgba8(colour[0], colour[1], colour[2], 255);
+        paint.anti_alias = true;
+        pixmap.fill_path(
+            &path,
+            &paint,
+            FillRule::Winding,
+            Transform::identity(),
+            None,
+        );
+    }
+}
+
+/// Paints `text` centred on `at.0` with its baseline at `at.1`, blending each glyph's coverage.
+fn label(pixmap: &mut Pixmap, font: &FontRef<'_>, at: Pt, text: &str, colour: Colour, size: f64) {
+    let scaled = font.as_scaled(PxScale::from(size as f32));
+    let (glyphs, advance) = glyphs(&scaled, text);
     let left = at.0 as f32 - advance / 2.0;
     let (width, height) = (pixmap.width(), pixmap.height());
     let data = pixmap.data_mut();
@@ -286,6 +375,49 @@ fn label(pixmap: &mut Pixmap, font: &FontRef<'_>, at: Pt, text: &str, colour: Co
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The ink's mean x in the rows `rows` of a pixmap painted black on white.
+    fn ink_x(pixmap: &Pixmap, rows: std::ops::Range<u32>) -> f64 {
+        let (mut sum, mut weight) = (0.0, 0.0);
+        for y in rows {
+            for x in 0..pixmap.width() {
+                let i = 4 * (y * pixmap.width() + x) as usize;
+                let ink = 1.0 - f64::from(pixmap.data()[i]) / 255.0;
+                sum += ink * f64::from(x);
+                weight += ink;
+            }
+        }
+        assert!(weight > 1.0, "ink in the rows");
+        sum / weight
+    }
+
+    #[test]
+    fn a_slanted_label_leans_right_by_its_slant() {
+        // An `l` is a vertical bar from the baseline (y = 60) up about 0.76 em (53 px at
+        // 70 px): upright its ink is straight, slanted its top is further right than its
+        // bottom by the slant times the height between them.
+        let font = FontRef::try_from_slice(FONT).expect("the bundled face");
+        let paint = |slant: bool| {
+            let mut pixmap = Pixmap::new(80, 80).expect("a pixmap");
+            pixmap.fill(tiny_skia::Color::WHITE);
+            if slant {
+                slanted(&mut pixmap, &font, (40.0, 60.0), "l", [0, 0, 0], 70.0);
+            } else {
+                label(&mut pixmap, &font, (40.0, 60.0), "l", [0, 0, 0], 70.0);
+            }
+            pixmap
+        };
+        let upright = paint(false);
+        let lean = ink_x(&upright, 15..20) - ink_x(&upright, 52..57);
+        assert!(lean.abs() < 0.5, "upright: {lean}");
+        let slanted = paint(true);
+        let lean = ink_x(&slanted, 15..20) - ink_x(&slanted, 52..57);
+        let expected = f64::from(SLANT) * 37.0;
+        assert!(
+            (lean - expected).abs() < 1.0,
+            "slanted: {lean} against {expected}"
+        );
+    }
 
     #[test]
     fn attributes_are_read_as_the_svg_writes_them() {

@@ -1,8 +1,14 @@
 //! The model's geometry in numbers: every point and frame at a state ([`Snapshot`]), and the
 //! small vector algebra the drawing needs. Everything is read through
-//! [`model::Model::evaluate`], the language's own numeric semantics.
+//! [`model::Model::evaluation`], the language's own numeric semantics: the model is evaluated
+//! once per state (every frame and point in one pass) and each expression read off that.
 
-use model::{Axis, Declaration, Expr, ExprKind, FrameId, Model, Span, State, Type, Value};
+use std::cell::OnceCell;
+
+use model::{
+    Axis, Declaration, Evaluation, EvaluationError, Expr, ExprKind, FrameId, Model, Span, State,
+    Type, Value,
+};
 
 use crate::scene::P3;
 use crate::DrawError;
@@ -34,6 +40,8 @@ pub struct Sampler<'m> {
     pub at: Configuration,
     zeros: Vec<f64>,
     frame_ids: Vec<Option<FrameId>>,
+    /// The model evaluated at `at`, once, when first needed.
+    here: OnceCell<Result<Evaluation<'m>, EvaluationError>>,
 }
 
 impl<'m> Sampler<'m> {
@@ -62,7 +70,41 @@ impl<'m> Sampler<'m> {
             zeros: vec![0.0; needed],
             at,
             frame_ids,
+            here: OnceCell::new(),
         })
+    }
+
+    /// The model evaluated at `coordinates` and `time`.
+    fn evaluation(
+        &self,
+        coordinates: &[f64],
+        time: f64,
+    ) -> Result<Evaluation<'m>, EvaluationError> {
+        self.model.evaluation(&self.state(coordinates, time))
+    }
+
+    /// `expr`'s value in `evaluation`, or the error named by the expression.
+    fn read(
+        &self,
+        evaluation: &Result<Evaluation<'m>, EvaluationError>,
+        expr: &Expr,
+    ) -> Result<Value, DrawError> {
+        evaluation
+            .as_ref()
+            .map_err(Clone::clone)
+            .and_then(|e| e.value(expr))
+            .map_err(|source| DrawError::Evaluate {
+                what: self.model.display(expr).to_string(),
+                source,
+            })
+    }
+
+    /// The value of `expr` at the configuration drawn.
+    fn value_here(&self, expr: &Expr) -> Result<Value, DrawError> {
+        let here = self
+            .here
+            .get_or_init(|| self.evaluation(&self.at.coordinates, self.at.time));
+        self.read(here, expr)
     }
 
     fn state<'a>(&'a self, coordinates: &'a [f64], time: f64) -> State<'a> {
@@ -73,28 +115,12 @@ impl<'m> Sampler<'m> {
         }
     }
 
-    /// The value of `expr` at `coordinates` and `time`.
-    ///
-    /// # Errors
-    /// [`DrawError::Evaluate`] when a value it needs is missing.
-    pub fn value(&self, expr: &Expr, coordinates: &[f64], time: f64) -> Result<Value, DrawError> {
-        self.model
-            .evaluate(expr, &self.state(coordinates, time))
-            .map_err(|source| DrawError::Evaluate {
-                what: self.model.display(expr).to_string(),
-                source,
-            })
-    }
-
     /// A scalar expression at the configuration drawn (`None` for a vector).
     ///
     /// # Errors
     /// As [`Sampler::value`].
     pub fn scalar(&self, expr: &Expr) -> Result<Option<f64>, DrawError> {
-        Ok(self
-            .value(expr, &self.at.coordinates, self.at.time)?
-            .scalar()
-            .filter(|x| x.is_finite()))
+        Ok(self.value_here(expr)?.scalar().filter(|x| x.is_finite()))
     }
 
     /// A vector expression at the configuration drawn (`None` for a scalar).
@@ -103,7 +129,7 @@ impl<'m> Sampler<'m> {
     /// As [`Sampler::value`].
     pub fn vector(&self, expr: &Expr) -> Result<Option<P3>, DrawError> {
         Ok(self
-            .value(expr, &self.at.coordinates, self.at.time)?
+            .value_here(expr)?
             .vector()
             .filter(|v| v.iter().all(|x| x.is_finite())))
     }
@@ -113,10 +139,11 @@ impl<'m> Sampler<'m> {
     /// # Errors
     /// As [`Sampler::value`].
     pub fn snapshot(&self, coordinates: &[f64], time: f64) -> Result<Snapshot, DrawError> {
+        let evaluation = self.evaluation(coordinates, time);
         let mut points = Vec::with_capacity(self.model.points().len());
         for point in self.model.points() {
             let p = match &point.position {
-                Some(e) => self.value(e, coordinates, time)?.vector(),
+                Some(e) => self.read(&evaluation, e)?.vector(),
                 None => Some([0.0; 3]),
             };
             points.push(finite(p.unwrap_or([0.0; 3])));
@@ -127,7 +154,7 @@ impl<'m> Sampler<'m> {
             if let Some(frame) = id {
                 for (k, axis) in [Axis::X, Axis::Y, Axis::Z].into_iter().enumerate() {
                     let e = unit_vector(*frame, axis);
-                    if let Some(v) = self.value(&e, coordinates, time)?.vector() {
+                    if let Some(v) = self.read(&evaluation, &e)?.vector() {
                         axes[k] = finite(v);
                     }
                 }

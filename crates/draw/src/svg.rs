@@ -50,11 +50,22 @@ pub(crate) fn style() -> &'static str {
 
 /// A page coordinate as the SVG writes it.
 pub(crate) fn number(x: f64) -> String {
-    f(x)
+    f(x).to_string()
 }
 
 /// The SVG of `scene` in `view`.
 pub(crate) fn write(scene: &Scene, view: &View) -> Written {
+    written(scene, view, true)
+}
+
+/// An animation's frame: [`Written::inner`], the labels and the bounds of `scene` in `view`,
+/// as [`write`] gives them, without the whole SVG's text, the shapes of a raster or the
+/// labels that touch the drawing.
+pub(crate) fn frame(scene: &Scene, view: &View) -> Written {
+    written(scene, view, false)
+}
+
+fn written(scene: &Scene, view: &View, whole: bool) -> Written {
     let mut w = Writer {
         view,
         body: String::new(),
@@ -63,6 +74,7 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
         ids: Vec::new(),
         size: scene.size,
         shapes: Vec::new(),
+        raster: whole,
     };
     for item in &scene.items {
         w.item(item);
@@ -94,18 +106,41 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
             f(r.h),
             escape(&label.text)
         );
-        w.shapes.push(Shape::Text {
-            at: (r.x + 0.5 * r.w, r.y + r.h - 0.25 * FONT),
-            text: label.text.clone(),
-            colour: class_colour(label.class),
-        });
+        if w.raster {
+            w.shapes.push(Shape::Text {
+                at: (r.x + 0.5 * r.w, r.y + r.h - 0.25 * FONT),
+                text: label.text.clone(),
+                colour: class_colour(label.class),
+                // The style sheet sets coordinates in italics.
+                oblique: label.class == "coordinate",
+            });
+        }
         boxes.push((label.id.clone(), *r));
-        if w.obstacles.iter().any(|o| o.meets(r)) {
+        // Only a figure reports the labels that touch its drawing.
+        if whole && w.obstacles.iter().any(|o| o.meets(r)) {
             touching.push(label.id.clone());
         }
     }
     let (lo, hi) = extent(&w.obstacles, &rects);
-    let svg = format!(
+    let svg = if whole {
+        root(view, (lo, hi), &w.body, &text)
+    } else {
+        String::new()
+    };
+    Written {
+        inner: format!("{}{}", w.body, text),
+        svg,
+        labels: boxes,
+        touching,
+        bounds: (lo, hi),
+        shapes: w.shapes,
+    }
+}
+
+/// The whole SVG: the root (with the projection), the style sheet, white paper over the box
+/// `(lo, hi)`, the drawing and its labels.
+fn root(view: &View, (lo, hi): (Pt, Pt), body: &str, text: &str) -> String {
+    format!(
         concat!(
             r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="{} {} {} {}" width="{}" height="{}" "#,
             r#"data-scale="{}" data-origin="{} {}" data-u="{} {} {}" data-v="{} {} {}">"#,
@@ -133,17 +168,9 @@ pub(crate) fn write(scene: &Scene, view: &View) -> Written {
         f(lo.1),
         f(hi.0 - lo.0),
         f(hi.1 - lo.1),
-        w.body,
+        body,
         text
-    );
-    Written {
-        inner: format!("{}{}", w.body, text),
-        svg,
-        labels: boxes,
-        touching,
-        bounds: (lo, hi),
-        shapes: w.shapes,
-    }
+    )
 }
 
 /// The colour the style sheet gives a label of this class.
@@ -198,13 +225,77 @@ fn extent(obstacles: &[Obstacle], rects: &[Rect]) -> (Pt, Pt) {
 }
 
 /// A number as written: two decimals, no `-0`.
-fn f(x: f64) -> String {
-    let s = format!("{x:.2}");
-    if s == "-0.00" {
-        "0.00".to_owned()
-    } else {
-        s
+fn f(x: f64) -> Number {
+    Number(x)
+}
+
+/// A page coordinate written with two decimals, `-0.00` as `0.00`, straight into the text
+/// (no string of its own: an animation writes hundreds of thousands of them).
+#[derive(Clone, Copy)]
+struct Number(f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, out: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let Some((negative, n)) = fixed(self.0, 100) {
+            return out.write_str(decimal(&mut [0; 24], negative && n > 0, n, 2));
+        }
+        // A negative number whose magnitude is under 0.005 (the double nearest 0.005 is just
+        // above it, so it rounds up) would print as `-0.00`.
+        if self.0.is_sign_negative() && -self.0 < 0.005 {
+            out.write_str("0.00")
+        } else {
+            write!(out, "{:.2}", self.0)
+        }
     }
+}
+
+/// The text of `steps / 10^decimals` with `decimals` digits after the point (none and no point
+/// for 0), a minus sign first when `negative`, written into the end of `buffer`.
+pub(crate) fn decimal(buffer: &mut [u8; 24], negative: bool, steps: u64, decimals: usize) -> &str {
+    let mut at = buffer.len();
+    let mut rest = steps;
+    let mut count = 0;
+    while count <= decimals || rest > 0 {
+        if count == decimals && decimals > 0 {
+            at -= 1;
+            buffer[at] = b'.';
+        }
+        at -= 1;
+        // A single decimal digit.
+        #[allow(clippy::cast_possible_truncation)]
+        let digit = (rest % 10) as u8;
+        buffer[at] = b'0' + digit;
+        rest /= 10;
+        count += 1;
+    }
+    if negative {
+        at -= 1;
+        buffer[at] = b'-';
+    }
+    // Only ASCII digits, a point and a minus sign were written.
+    std::str::from_utf8(&buffer[at..]).unwrap_or_default()
+}
+
+/// `|x|` rounded to a multiple of `1/per_unit` (`per_unit` a power of ten), as the count of
+/// those steps, with the sign of `x` — exactly what `format!("{x:.N}")` rounds to (the
+/// nearest, from `x`'s exact binary value), found by integer arithmetic. `None` when that
+/// cannot be told that way (then let `format!` do it): `x` is not finite, or not below 10⁶
+/// in magnitude, or `|x| · per_unit` lies within 10⁻⁶ of a half step, where the product's
+/// rounding (at most about 10⁻⁸ here) could decide the way. Formatting a float exactly is
+/// most of the cost of writing an animation's frames; this is a few multiplications.
+pub(crate) fn fixed(x: f64, per_unit: u32) -> Option<(bool, u64)> {
+    let magnitude = x.abs();
+    if magnitude.is_nan() || magnitude >= 1e6 {
+        return None;
+    }
+    let scaled = magnitude * f64::from(per_unit);
+    if (scaled.fract() - 0.5).abs() < 1e-6 {
+        return None;
+    }
+    // Below 10⁶ · 100 and not negative: the conversion is exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let steps = scaled.round() as u64;
+    Some((x.is_sign_negative(), steps))
 }
 
 fn escape(s: &str) -> String {
@@ -237,9 +328,19 @@ struct Writer<'v> {
     ids: Vec<String>,
     size: f64,
     shapes: Vec<Shape>,
+    /// Whether to keep [`Writer::shapes`] (a figure's PNG needs them; an animation's frames
+    /// do not).
+    raster: bool,
 }
 
 impl Writer<'_> {
+    /// Keeps what was drawn for the raster, when one is wanted.
+    fn shape(&mut self, make: impl FnOnce() -> Shape) {
+        if self.raster {
+            self.shapes.push(make());
+        }
+    }
+
     fn p(&self, p: P3) -> Pt {
         self.view.page(p)
     }
@@ -275,7 +376,7 @@ impl Writer<'_> {
             f(b.0),
             f(b.1)
         );
-        self.shapes.push(Shape::Path {
+        self.shape(|| Shape::Path {
             runs: vec![vec![a, b]],
             closed: false,
             paint: Paint::from_attributes(attrs, false),
@@ -289,7 +390,7 @@ impl Writer<'_> {
             let _ = write!(d, "{}{} {}", if k == 0 { "" } else { " " }, f(p.0), f(p.1));
         }
         let _ = writeln!(self.body, r#"<polyline points="{d}" fill="none" {attrs}/>"#);
-        self.shapes.push(Shape::Path {
+        self.shape(|| Shape::Path {
             runs: vec![points.to_vec()],
             closed: false,
             paint: Paint::from_attributes(attrs, false),
@@ -306,7 +407,7 @@ impl Writer<'_> {
             let _ = write!(d, "{}{} {}", if k == 0 { "" } else { " " }, f(p.0), f(p.1));
         }
         let _ = writeln!(self.body, r#"<polygon points="{d}" {attrs}/>"#);
-        self.shapes.push(Shape::Path {
+        self.shape(|| Shape::Path {
             runs: vec![points.to_vec()],
             closed: true,
             paint: Paint::from_attributes(attrs, true),
@@ -326,7 +427,7 @@ impl Writer<'_> {
             f(c.1),
             f(r)
         );
-        self.shapes.push(Shape::Circle {
+        self.shape(|| Shape::Circle {
             centre: c,
             radius: r,
             paint: Paint::from_attributes(attrs, true),
@@ -514,7 +615,7 @@ impl Writer<'_> {
             let _ = write!(d, "M{} {}L{} {}", f(p.0), f(p.1), f(q.0), f(q.1));
             runs.push(vec![p, q]);
         }
-        self.shapes.push(Shape::Path {
+        self.shape(|| Shape::Path {
             runs,
             closed: false,
             paint: Paint::from_attributes(&format!(r#"stroke="{INK}" stroke-width="1""#), false),
@@ -679,7 +780,7 @@ impl Writer<'_> {
             f(r.0),
             f(r.1)
         );
-        self.shapes.push(Shape::Path {
+        self.shape(|| Shape::Path {
             runs: vec![vec![tip, l, r]],
             closed: true,
             paint: Paint::from_attributes(&format!(r#"fill="{colour}""#), true),
@@ -775,4 +876,60 @@ impl Writer<'_> {
 
 fn mid(a: Pt, b: Pt) -> Pt {
     (0.5 * (a.0 + b.0), 0.5 * (a.1 + b.1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What `format!` writes, `-0.00` as `0.00`: the definition [`Number`] must follow.
+    fn reference(x: f64) -> String {
+        let s = format!("{x:.2}");
+        if s == "-0.00" {
+            "0.00".to_owned()
+        } else {
+            s
+        }
+    }
+
+    #[test]
+    fn numbers_are_written_as_format_writes_them() {
+        // Halves of a cent that are and are not exact in binary, numbers next to them, zeros
+        // of both signs, large and odd values, and a dense irregular sweep.
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.005,
+            -0.005,
+            0.125,
+            -0.125,
+            0.375,
+            2.675,
+            1.005,
+            1.015,
+            1e6,
+            1e9,
+            123_456.785,
+            -999_999.995,
+            0.004_999_999,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        for &x in &values.clone() {
+            values.push(f64::from_bits(x.to_bits() + 1));
+            values.push(f64::from_bits(x.to_bits().saturating_sub(1)));
+        }
+        let mut x = -700.0;
+        while x < 700.0 {
+            values.push(x);
+            x += 0.000_731_7;
+        }
+        for k in 0..200_000 {
+            values.push(f64::from(k) / 200.0 - 500.0);
+            values.push(f64::from(k) / 100.0);
+        }
+        for x in values {
+            assert_eq!(Number(x).to_string(), reference(x), "{x:e}");
+        }
+    }
 }

@@ -88,6 +88,38 @@ impl Model {
         let environment = Environment::new(self, state, true)?;
         environment.value(expr)
     }
+
+    /// Every declaration of this model evaluated once at `state`, to evaluate many expressions
+    /// at that one state: [`Evaluation::value`] of an expression is what
+    /// [`Model::evaluate`] gives, without computing every frame and point again for each.
+    ///
+    /// # Errors
+    /// As [`Model::evaluate`].
+    pub fn evaluation(&self, state: &State<'_>) -> Result<Evaluation<'_>, EvaluationError> {
+        let needed = self.coordinates.len();
+        let given = state.coordinates.len().min(state.rates.len());
+        if given < needed {
+            return Err(EvaluationError::StateTooShort { given, needed });
+        }
+        Ok(Evaluation {
+            environment: Environment::new(self, state, true)?,
+        })
+    }
+}
+
+/// A model evaluated at one state ([`Model::evaluation`]): the values of its expressions there.
+pub struct Evaluation<'m> {
+    environment: Environment<'m>,
+}
+
+impl Evaluation<'_> {
+    /// The value of `expr` (an expression of the model) at the state, as [`Model::evaluate`].
+    ///
+    /// # Errors
+    /// A parameter or input used without a value.
+    pub fn value(&self, expr: &Expr) -> Result<Value, EvaluationError> {
+        self.environment.value(expr)
+    }
 }
 
 type Matrix = [[f64; 3]; 3];

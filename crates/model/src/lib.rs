@@ -38,7 +38,7 @@ mod values;
 pub use check::check;
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Label, NameKind, Severity, Type};
 pub use display::DisplayExpr;
-pub use evaluate::{EvaluationError, State, Value};
+pub use evaluate::{Evaluation, EvaluationError, State, Value};
 pub use lower::{lower, LowerError};
 pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
