@@ -4,6 +4,7 @@
 use mechanics::equilibria::{
     find_equilibria, spin_rate, steady_equations, EquilibriumSet, RestEquations, Values,
 };
+use mechanics::keep_distinct_configurations;
 use mechanics::linearize::{linear_model, linearize_at, LinearModel, LinearizeError, Linearized};
 
 use report::equilibria as print;
@@ -131,6 +132,8 @@ struct Prepared {
     bounds: Vec<(f64, f64)>,
     values: Values,
     known: Vec<String>,
+    /// The system and its equations, to tell configurations apart.
+    geometry: (mechanics::System, mechanics::Equations),
 }
 
 impl Prepared {
@@ -138,7 +141,10 @@ impl Prepared {
         &self,
         values: &Values,
     ) -> Result<(EquilibriumSet, Vec<Result<Linearized, LinearizeError>>), Error> {
-        let set = find_equilibria(&self.rest, values, &self.bounds)?;
+        let mut set = find_equilibria(&self.rest, values, &self.bounds)?;
+        let (system, equations) = &self.geometry;
+        let periodic = &self.rest.periodic;
+        keep_distinct_configurations(&mut set, system, equations, values, periodic);
         let linearized = set
             .equilibria
             .iter()
@@ -276,6 +282,7 @@ impl Analysis {
             bounds,
             values,
             known,
+            geometry: (self.system().clone(), equations.clone()),
         })
     }
 }

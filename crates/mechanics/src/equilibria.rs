@@ -136,6 +136,19 @@ pub struct EquilibriumSet {
     pub method: Method,
     /// The search box per coordinate.
     pub bounds: Vec<(f64, f64)>,
+    /// Equilibria left out because the coordinates reach the configuration of one kept
+    /// (a double cover, like a polar radius of either sign); empty until
+    /// [`crate::keep_distinct_configurations`] is applied.
+    pub repeated: Vec<Repeated>,
+}
+
+/// Other coordinates of the configuration of a kept equilibrium.
+#[derive(Clone, Debug)]
+pub struct Repeated {
+    /// The index of the kept equilibrium.
+    pub same_as: usize,
+    /// The other coordinates.
+    pub values: Vec<f64>,
 }
 
 /// The symbols of the rates `q̇`, `q̈` of a coordinate.
@@ -621,6 +634,7 @@ pub fn find_equilibria(
         equilibria: found,
         method,
         bounds,
+        repeated: Vec::new(),
     })
 }
 

@@ -31,6 +31,7 @@
 
 pub mod canonical;
 mod compiled_eval;
+mod configuration;
 mod constraint_rank;
 mod equations;
 pub mod equilibria;
@@ -40,6 +41,7 @@ mod reactions;
 mod system;
 mod unilateral;
 
+pub use configuration::{configuration, keep_distinct_configurations};
 pub use constraint_rank::{constraint_conflict, ConstraintConflict};
 pub use equations::{
     angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,

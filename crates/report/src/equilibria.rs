@@ -65,9 +65,16 @@ pub fn equilibria_array(
                 Ok(l) => (json!(l.stable), json!(l.criterion.to_string()), eigen_pairs(&l.eigenvalues)),
                 Err(err) => (Value::Null, json!(format!("not decided: {err}")), json!([])),
             };
+            let also_at: Vec<Value> = set
+                .repeated
+                .iter()
+                .filter(|r| r.same_as == i)
+                .map(|r| by_coordinate(&rest.coordinates, &r.values))
+                .collect();
             json!({
                 "index": i,
                 "values": by_coordinate(&rest.coordinates, &e.values),
+                "also_at": also_at,
                 "exact": exact,
                 "conditions": e.conditions.iter().map(|c| condition_text(c, to_sympy)).collect::<Vec<_>>(),
                 "stable": stable,
@@ -171,19 +178,35 @@ pub(crate) fn stability_word(s: Option<bool>) -> &'static str {
     }
 }
 
+/// A number to six decimals, without the minus of a value that rounds to zero ("-0.000000").
+fn six(v: f64) -> String {
+    let text = format!("{v:.6}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_owned(),
+        _ => text,
+    }
+}
+
+/// `re±im i` to six decimals, a part that rounds to zero without its minus.
+fn complex_six(re: f64, im: f64) -> String {
+    let im_text = six(im);
+    let sign = if im_text.starts_with('-') { "" } else { "+" };
+    format!("{}{sign}{im_text}i", six(re))
+}
+
 fn point_text(rest: &RestEquations, values: &[f64], exact: Option<&Vec<Expr>>) -> String {
     rest.coordinates
         .iter()
         .enumerate()
         .map(|(i, q)| {
             if rest.free.get(i).copied().unwrap_or(false) {
-                return format!("{q} = any (free; shown at {:.6})", values[i]);
+                return format!("{q} = any (free; shown at {})", six(values[i]));
             }
             let exact = exact
                 .and_then(|x| x.get(i))
                 .map(|e| format!(" = {}", to_unicode(*e)))
                 .unwrap_or_default();
-            format!("{q}{exact} = {:.6}", values[i])
+            format!("{q}{exact} = {}", six(values[i]))
         })
         .collect::<Vec<_>>()
         .join(", ")
@@ -227,13 +250,20 @@ pub fn equilibria_text(
         for c in &e.conditions {
             let _ = writeln!(out, "    exists when {}", condition_text(c, to_unicode));
         }
+        for r in set.repeated.iter().filter(|r| r.same_as == i) {
+            let other = point_text(rest, &r.values, None);
+            let _ = writeln!(
+                out,
+                "    also at {other}: the coordinates reach this configuration twice"
+            );
+        }
         match l {
             Ok(l) => {
                 let _ = writeln!(out, "    {} — {}", stability_word(l.stable), l.criterion);
                 let eig: Vec<String> = l
                     .eigenvalues
                     .iter()
-                    .map(|(re, im)| format!("{re:.6}{im:+.6}i"))
+                    .map(|(re, im)| complex_six(*re, *im))
                     .collect();
                 let _ = writeln!(out, "    eigenvalues: {}", eig.join(", "));
             }
@@ -331,7 +361,7 @@ pub fn linearized_text(
         let eig: Vec<String> = l
             .eigenvalues
             .iter()
-            .map(|(re, im)| format!("{re:.6}{im:+.6}i"))
+            .map(|(re, im)| complex_six(*re, *im))
             .collect();
         let _ = writeln!(out, "  eigenvalues of A: {}", eig.join(", "));
         if let Some(r) = l.controllability_rank {
