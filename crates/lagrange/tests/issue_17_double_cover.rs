@@ -86,3 +86,32 @@ gravity -g*N.y
     assert_eq!(equilibria.set.equilibria.len(), 4);
     assert!(equilibria.set.repeated.is_empty());
 }
+
+/// Issue 17: springs added equilibria where a spring passes through zero length (its force
+/// `−k (|d| − a) d/|d|` has no value there). `examples/spring-chain.lag` listed
+/// `x = (−1, 0, 1)`, the first mass on the wall's anchor; the search now evaluates the rest
+/// equations where they are defined only.
+#[test]
+fn no_equilibrium_puts_a_spring_at_zero_length() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/spring-chain.lag");
+    let analysis = Analysis::from_file(&path).unwrap();
+    let equilibria = analysis.equilibria().unwrap();
+    assert!(!equilibria.set.equilibria.is_empty());
+    for e in &equilibria.set.equilibria {
+        // a = 1: the masses sit at 1 + x1, 2 + x2, 3 + x3 between anchors at 0 and 4.
+        let x = &e.values;
+        let points = [0.0, 1.0 + x[0], 2.0 + x[1], 3.0 + x[2], 4.0];
+        for pair in points.windows(2) {
+            assert!(
+                (pair[1] - pair[0]).abs() > 1e-6,
+                "a spring of zero length at {x:?}"
+            );
+        }
+    }
+    assert!(equilibria
+        .set
+        .equilibria
+        .iter()
+        .any(|e| e.values.iter().all(|v| v.abs() < 1e-9)));
+}
