@@ -828,6 +828,9 @@ fn accumulate(acc: &mut FxHashMap<Monomial, Number>, m: Monomial, c: Number) {
 
 /// Applies `sin² = 1 − cos²` and `r^q = b` to one term.
 fn rewrite_term(m: Monomial, c: Number) -> Poly {
+    if let Some(p) = rewrite_sin_squares(&m, &c) {
+        return p;
+    }
     let mut plain = Monomial::new();
     let mut factors: Vec<Poly> = Vec::new();
     for &(x, e) in &m {
@@ -866,6 +869,42 @@ fn rewrite_term(m: Monomial, c: Number) -> Poly {
         p = p.mul(&f);
     }
     p
+}
+
+/// [`rewrite_term`] for a term whose only rewriting is `sin²` or `sin³` factors (the terms of
+/// a product of reduced polynomials): each `sin² = 1 − cos²` doubles the list of terms, and
+/// the products are distinct monomials, so they are formed directly, without the general
+/// product's hashing. `None` for anything else (roots, higher powers).
+fn rewrite_sin_squares(m: &Monomial, c: &Number) -> Option<Poly> {
+    let mut plain = Monomial::new();
+    let mut cosines: SmallVec<[AtomId; 4]> = SmallVec::new();
+    for &(x, e) in m {
+        match x >> KIND_SHIFT {
+            KIND_SIN if e >= 4 => return None,
+            KIND_SIN if e >= 2 => {
+                let AtomKind::Sin { cos, .. } = atom_info(x).kind else {
+                    return None;
+                };
+                if e == 3 {
+                    plain.push((x, 1));
+                }
+                cosines.push(cos);
+            }
+            KIND_ROOT => return None,
+            _ => plain.push((x, e)),
+        }
+    }
+    let mut terms = vec![(plain, c.clone())];
+    for cos in cosines {
+        let square: Monomial = smallvec::smallvec![(cos, 2)];
+        let mut next = Vec::with_capacity(terms.len() * 2);
+        for (mono, coefficient) in terms {
+            next.push((mul_monomials(&mono, &square), coefficient.neg()));
+            next.push((mono, coefficient));
+        }
+        terms = next;
+    }
+    Some(Poly::from_terms(terms))
 }
 
 thread_local! {
