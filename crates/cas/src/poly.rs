@@ -650,9 +650,9 @@ impl Poly {
     /// exact: a product with such a polynomial is the plain product of polynomials in
     /// `ℚ[atoms]`, where the usual divisibility arguments hold.
     pub(crate) fn is_plain_exact(&self) -> bool {
-        self.terms.iter().all(|(m, c)| {
-            !c.is_float() && m.iter().all(|&(x, _)| x >> KIND_SHIFT == KIND_PLAIN)
-        })
+        self.terms
+            .iter()
+            .all(|(m, c)| !c.is_float() && m.iter().all(|&(x, _)| x >> KIND_SHIFT == KIND_PLAIN))
     }
 
     pub(crate) fn contains_atom(&self, x: AtomId) -> bool {
