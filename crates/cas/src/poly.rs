@@ -1127,6 +1127,48 @@ mod tests {
     }
 
     #[test]
+    fn sin_squares_expand_in_place_as_by_products() {
+        // `rewrite_sin_squares` forms the 2^k terms itself; they must be those of the
+        // general product `c m (1 − cos²a)(1 − cos²b)…`, cubes and shared cosines included.
+        let (sa, ca) = trig_atoms(Expr::symbol("poly_test_a"));
+        let (sb, cb) = trig_atoms(Expr::symbol("poly_test_b"));
+        let x = plain_atom(Expr::symbol("poly_test_x"));
+        let cases: Vec<Monomial> = vec![
+            smallvec::smallvec![(sa, 2)],
+            smallvec::smallvec![(sa, 3), (x, 2)],
+            smallvec::smallvec![(sa, 2), (sb, 2), (ca, 1)],
+            smallvec::smallvec![(sa, 3), (sb, 2), (cb, 3), (x, 1)],
+        ];
+        let one_minus = |cos: AtomId| Poly::one().sub(&Poly::atom_pow(cos, 2));
+        for m in cases {
+            let mut m = m;
+            m.sort_by_key(|&(a, _)| key(a));
+            let c = Number::rational(-3, 7).expect("a fraction");
+            let fast = rewrite_sin_squares(&m, &c).expect("only sin squares");
+            let mut plain = Monomial::new();
+            let mut expected_factors = Vec::new();
+            for &(a, e) in &m {
+                match (a, e) {
+                    (a, 2 | 3) if a == sa || a == sb => {
+                        if e == 3 {
+                            plain.push((a, 1));
+                        }
+                        expected_factors.push(one_minus(if a == sa { ca } else { cb }));
+                    }
+                    _ => plain.push((a, e)),
+                }
+            }
+            let mut expected = Poly {
+                terms: vec![(plain, c.clone())],
+            };
+            for f in expected_factors {
+                expected = expected.mul_raw(&f);
+            }
+            assert_eq!(fast, expected, "{m:?}");
+        }
+    }
+
+    #[test]
     fn sin_squared_is_rewritten() {
         let th = Expr::symbol("poly_test_theta");
         let (s, c) = trig_atoms(th);

@@ -272,3 +272,43 @@ fn rationalize(num: Poly, den: Poly) -> (Poly, Poly) {
     }
     (num, den)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::to_rf;
+
+    fn rf(text: &str) -> Rf {
+        to_rf(
+            crate::parse::parse(text, &crate::parse::ParseContext::new())
+                .expect("a test expression"),
+        )
+    }
+
+    /// The sum through the general path: one numerator over the product of denominators,
+    /// reduced by a GCD.
+    fn slow_sum(a: &Rf, b: &Rf) -> Rf {
+        let num = a.num.mul(&b.den).add(&b.num.mul(&a.den));
+        Rf::new(num, a.den.mul(&b.den)).expect("a non-zero denominator")
+    }
+
+    #[test]
+    fn sums_that_skip_the_gcd_are_those_of_the_general_path() {
+        // `Rf::add` skips the GCD for a polynomial plus a fraction and for coprime plain
+        // denominators; the result must be the reduced, canonical form all the same.
+        let cases = [
+            ("x^2 + 3*y", "(x - 1)/(2*y + x^2)"),
+            ("sin(t)*x", "cos(t)/(x*y + 3)"),
+            ("(x + 1)/(y - 2)", "x/(x + y)"),
+            ("(3*x + 1)/(-2*y - 4)", "(x*y)/(6*x + 3)"),
+            ("1/(x + 1)", "-1/(x + 1)"),
+            ("x/(cos(t) + 2)", "sin(t)/(x^2 + 1)"),
+            ("x/(x + sin(t))", "y"),
+        ];
+        for (a, b) in cases {
+            let (a, b) = (rf(a), rf(b));
+            assert_eq!(a.add(&b), slow_sum(&a, &b), "{a:?} + {b:?}");
+            assert_eq!(b.add(&a), slow_sum(&b, &a), "{b:?} + {a:?}");
+        }
+    }
+}
