@@ -646,6 +646,15 @@ impl Poly {
         v
     }
 
+    /// Whether every atom is free of rewriting rules (no `sin`, no root) and every coefficient
+    /// exact: a product with such a polynomial is the plain product of polynomials in
+    /// `ℚ[atoms]`, where the usual divisibility arguments hold.
+    pub(crate) fn is_plain_exact(&self) -> bool {
+        self.terms
+            .iter()
+            .all(|(m, c)| !c.is_float() && m.iter().all(|&(x, _)| x >> KIND_SHIFT == KIND_PLAIN))
+    }
+
     pub(crate) fn contains_atom(&self, x: AtomId) -> bool {
         self.terms
             .iter()
@@ -819,6 +828,9 @@ fn accumulate(acc: &mut FxHashMap<Monomial, Number>, m: Monomial, c: Number) {
 
 /// Applies `sin² = 1 − cos²` and `r^q = b` to one term.
 fn rewrite_term(m: Monomial, c: Number) -> Poly {
+    if let Some(p) = rewrite_sin_squares(&m, &c) {
+        return p;
+    }
     let mut plain = Monomial::new();
     let mut factors: Vec<Poly> = Vec::new();
     for &(x, e) in &m {
@@ -857,6 +869,42 @@ fn rewrite_term(m: Monomial, c: Number) -> Poly {
         p = p.mul(&f);
     }
     p
+}
+
+/// [`rewrite_term`] for a term whose only rewriting is `sin²` or `sin³` factors (the terms of
+/// a product of reduced polynomials): each `sin² = 1 − cos²` doubles the list of terms, and
+/// the products are distinct monomials, so they are formed directly, without the general
+/// product's hashing. `None` for anything else (roots, higher powers).
+fn rewrite_sin_squares(m: &Monomial, c: &Number) -> Option<Poly> {
+    let mut plain = Monomial::new();
+    let mut cosines: SmallVec<[AtomId; 4]> = SmallVec::new();
+    for &(x, e) in m {
+        match x >> KIND_SHIFT {
+            KIND_SIN if e >= 4 => return None,
+            KIND_SIN if e >= 2 => {
+                let AtomKind::Sin { cos, .. } = atom_info(x).kind else {
+                    return None;
+                };
+                if e == 3 {
+                    plain.push((x, 1));
+                }
+                cosines.push(cos);
+            }
+            KIND_ROOT => return None,
+            _ => plain.push((x, e)),
+        }
+    }
+    let mut terms = vec![(plain, c.clone())];
+    for cos in cosines {
+        let square: Monomial = smallvec::smallvec![(cos, 2)];
+        let mut next = Vec::with_capacity(terms.len() * 2);
+        for (mono, coefficient) in terms {
+            next.push((mul_monomials(&mono, &square), coefficient.neg()));
+            next.push((mono, coefficient));
+        }
+        terms = next;
+    }
+    Some(Poly::from_terms(terms))
 }
 
 thread_local! {
@@ -1076,6 +1124,48 @@ mod tests {
 
     fn var(name: &str) -> Poly {
         Poly::atom(plain_atom(Expr::symbol(name)))
+    }
+
+    #[test]
+    fn sin_squares_expand_in_place_as_by_products() {
+        // `rewrite_sin_squares` forms the 2^k terms itself; they must be those of the
+        // general product `c m (1 − cos²a)(1 − cos²b)…`, cubes and shared cosines included.
+        let (sa, ca) = trig_atoms(Expr::symbol("poly_test_a"));
+        let (sb, cb) = trig_atoms(Expr::symbol("poly_test_b"));
+        let x = plain_atom(Expr::symbol("poly_test_x"));
+        let cases: Vec<Monomial> = vec![
+            smallvec::smallvec![(sa, 2)],
+            smallvec::smallvec![(sa, 3), (x, 2)],
+            smallvec::smallvec![(sa, 2), (sb, 2), (ca, 1)],
+            smallvec::smallvec![(sa, 3), (sb, 2), (cb, 3), (x, 1)],
+        ];
+        let one_minus = |cos: AtomId| Poly::one().sub(&Poly::atom_pow(cos, 2));
+        for m in cases {
+            let mut m = m;
+            m.sort_by_key(|&(a, _)| key(a));
+            let c = Number::rational(-3, 7).expect("a fraction");
+            let fast = rewrite_sin_squares(&m, &c).expect("only sin squares");
+            let mut plain = Monomial::new();
+            let mut expected_factors = Vec::new();
+            for &(a, e) in &m {
+                match (a, e) {
+                    (a, 2 | 3) if a == sa || a == sb => {
+                        if e == 3 {
+                            plain.push((a, 1));
+                        }
+                        expected_factors.push(one_minus(if a == sa { ca } else { cb }));
+                    }
+                    _ => plain.push((a, e)),
+                }
+            }
+            let mut expected = Poly {
+                terms: vec![(plain, c.clone())],
+            };
+            for f in expected_factors {
+                expected = expected.mul_raw(&f);
+            }
+            assert_eq!(fast, expected, "{m:?}");
+        }
     }
 
     #[test]

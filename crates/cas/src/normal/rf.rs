@@ -89,6 +89,21 @@ impl Rf {
         if self.den.is_one() && other.den.is_one() {
             return Rf::from_poly(self.num.add(&other.num));
         }
+        if self.is_zero() {
+            return other.clone();
+        }
+        if other.is_zero() {
+            return self.clone();
+        }
+        // P + N/D = (P D + N)/D is already reduced: a common factor of `P D + N` and `D`
+        // would divide `N`, and `N/D` is reduced. That holds in `ℚ[atoms]`, so only when the
+        // product `P D` rewrites nothing (a plain, exact `D`); no GCD of the large sum.
+        if self.den.is_one() && other.den.is_plain_exact() {
+            return Rf::reduced(self.num.mul(&other.den).add(&other.num), other.den.clone());
+        }
+        if other.den.is_one() && self.den.is_plain_exact() {
+            return Rf::reduced(other.num.mul(&self.den).add(&self.num), self.den.clone());
+        }
         if self.den == other.den {
             return Rf::new(self.num.add(&other.num), self.den.clone()).unwrap_or_else(Rf::zero);
         }
@@ -101,12 +116,34 @@ impl Rf {
         let (num, den) = match split {
             // n1/(g a) + n2/(g b) = (n1 b + n2 a) / (g a b)
             Some((a, b)) => (self.num.mul(&b).add(&other.num.mul(&a)), self.den.mul(&b)),
-            None => (
-                self.num.mul(&other.den).add(&other.num.mul(&self.den)),
-                self.den.mul(&other.den),
-            ),
+            None => {
+                let num = self.num.mul(&other.den).add(&other.num.mul(&self.den));
+                let den = self.den.mul(&other.den);
+                // Coprime reduced fractions: a factor of `n1 d2 + n2 d1` and `d1` divides
+                // `n1 d2`, so none is common (again in `ℚ[atoms]`, plain exact denominators).
+                if self.den.is_plain_exact() && other.den.is_plain_exact() {
+                    return Rf::reduced(num, den);
+                }
+                (num, den)
+            }
         };
         Rf::new(num, den).unwrap_or_else(Rf::zero)
+    }
+
+    /// `num / den` known to have no common factor, with `den` plain, exact and not constant:
+    /// only the canonical unit of the denominator is applied (no GCD, nothing to rationalise).
+    fn reduced(num: Poly, den: Poly) -> Rf {
+        if num.is_zero() {
+            return Rf::zero();
+        }
+        let unit = denominator_unit(&den);
+        match unit.recip() {
+            Some(inv) if !unit.is_one() => Rf {
+                num: num.scale(&inv),
+                den: den.scale(&inv),
+            },
+            _ => Rf { num, den },
+        }
     }
 
     pub(crate) fn neg(&self) -> Rf {
@@ -234,4 +271,44 @@ fn rationalize(num: Poly, den: Poly) -> (Poly, Poly) {
         den = den.mul(&conj);
     }
     (num, den)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::normal::to_rf;
+
+    fn rf(text: &str) -> Rf {
+        to_rf(
+            crate::parse::parse(text, &crate::parse::ParseContext::new())
+                .expect("a test expression"),
+        )
+    }
+
+    /// The sum through the general path: one numerator over the product of denominators,
+    /// reduced by a GCD.
+    fn slow_sum(a: &Rf, b: &Rf) -> Rf {
+        let num = a.num.mul(&b.den).add(&b.num.mul(&a.den));
+        Rf::new(num, a.den.mul(&b.den)).expect("a non-zero denominator")
+    }
+
+    #[test]
+    fn sums_that_skip_the_gcd_are_those_of_the_general_path() {
+        // `Rf::add` skips the GCD for a polynomial plus a fraction and for coprime plain
+        // denominators; the result must be the reduced, canonical form all the same.
+        let cases = [
+            ("x^2 + 3*y", "(x - 1)/(2*y + x^2)"),
+            ("sin(t)*x", "cos(t)/(x*y + 3)"),
+            ("(x + 1)/(y - 2)", "x/(x + y)"),
+            ("(3*x + 1)/(-2*y - 4)", "(x*y)/(6*x + 3)"),
+            ("1/(x + 1)", "-1/(x + 1)"),
+            ("x/(cos(t) + 2)", "sin(t)/(x^2 + 1)"),
+            ("x/(x + sin(t))", "y"),
+        ];
+        for (a, b) in cases {
+            let (a, b) = (rf(a), rf(b));
+            assert_eq!(a.add(&b), slow_sum(&a, &b), "{a:?} + {b:?}");
+            assert_eq!(b.add(&a), slow_sum(&b, &a), "{b:?} + {a:?}");
+        }
+    }
 }

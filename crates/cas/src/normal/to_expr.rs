@@ -92,16 +92,41 @@ impl RankedAtoms {
         }
         let exprs = atom_exprs(&ids);
         let mut classes = Vec::with_capacity(exprs.len());
+        // What each factor is ordered by: the atom, or a root's base (a power sorts by base).
+        let mut bases = Vec::with_capacity(exprs.len());
         for e in &exprs {
-            classes.push(match e.node() {
-                Node::Symbol(_) => 1u8,
-                Node::Constant(_) => 2,
-                Node::Func(..) => 6,
+            let (class, base) = match e.node() {
+                Node::Symbol(_) => (1u8, *e),
+                Node::Constant(_) => (2, *e),
+                Node::Func(..) => (6, *e),
+                // A root of a sum, `A^(1/q)`, is a power no other factor shares a base with
+                // (the other atoms are symbols, constants and applications), so the
+                // constructors keep it as it is; two roots of one sum would merge.
+                Node::Pow([base, _]) if matches!(base.node(), Node::Add(_)) => {
+                    if bases.contains(base) {
+                        return None;
+                    }
+                    (ROOT_CLASS, *base)
+                }
                 _ => return None,
+            };
+            classes.push(class);
+            bases.push(base);
+        }
+        if classes.contains(&ROOT_CLASS) {
+            // A root appears to the first power only (`r^q = b` is applied); a higher power
+            // would merge exponents in the constructors.
+            let root_power = p.terms.iter().any(|(m, _)| {
+                m.iter().any(|&(a, e)| {
+                    e > 1 && classes[slot_of[(atom_index(a) - low) as usize] as usize] == ROOT_CLASS
+                })
             });
+            if root_power {
+                return None;
+            }
         }
         let mut by_structure: Vec<usize> = (0..ids.len()).collect();
-        by_structure.sort_by(|&i, &j| exprs[i].cmp_structure(exprs[j]));
+        by_structure.sort_by(|&i, &j| bases[i].cmp_structure(bases[j]));
         let mut ranks = vec![0u32; ids.len()];
         for (rank, &i) in by_structure.iter().enumerate() {
             ranks[i] = rank as u32;
@@ -123,7 +148,9 @@ impl RankedAtoms {
             .map(|&(a, e)| {
                 let i = self.slot_of[(atom_index(a) - self.low) as usize] as usize;
                 let base = self.exprs[i];
-                if e == 1 {
+                if self.classes[i] == ROOT_CLASS {
+                    (pack_factor(3, self.ranks[i], 1), base)
+                } else if e == 1 {
                     (pack_factor(self.classes[i], self.ranks[i], 1), base)
                 } else {
                     let power = intern_compound(Compound::Pow, &[base, Expr::int(i64::from(e))]);
@@ -163,6 +190,9 @@ impl RankedAtoms {
         }
     }
 }
+
+/// The class [`RankedAtoms`] gives a root atom: a power (node rank 3), ranked by its base.
+const ROOT_CLASS: u8 = 7;
 
 /// Exponents from here on do not fit a packed factor key (and never occur in mechanics).
 const MAX_PACKED_EXPONENT: u32 = 1 << 24;
@@ -230,6 +260,11 @@ mod tests {
         atoms.push(Expr::coordinate("theta").sin());
         atoms.push(Expr::coordinate("phi").cos());
         atoms.push(Expr::symbol("a").exp());
+        // Roots of sums (a spring's length): powers ranked by their base.
+        let (a, b) = (Expr::symbol("a"), Expr::symbol("b"));
+        let theta = Expr::coordinate("theta");
+        atoms.push((a * a + theta.cos()).sqrt());
+        atoms.push((b + Expr::int(2) * Expr::coordinate("phi").cos()).sqrt());
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         for _ in 0..1000 {
             let terms = 1 + rng.below(9);
