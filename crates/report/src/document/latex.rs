@@ -37,6 +37,13 @@ impl Document {
                     Block::Remark(p) => {
                         let _ = writeln!(out, "\\textit{{Obs.}} {}\n", latex_text(p));
                     }
+                    Block::List(items) => {
+                        let _ = writeln!(out, "\\begin{{itemize}}");
+                        for item in items {
+                            let _ = writeln!(out, "\\item {}", latex_text(item));
+                        }
+                        let _ = writeln!(out, "\\end{{itemize}}\n");
+                    }
                     Block::Equations(lines) => {
                         let _ = writeln!(out, "\\begin{{align*}}");
                         let _ = writeln!(out, "{}", aligned_lines(lines));
@@ -504,8 +511,10 @@ fn math_symbol(ch: char) -> Option<&'static str> {
         ('√', r"\surd"),
         ('∇', r"\nabla"),
     ];
-    const OTHER: [(char, &str); 32] = [
+    const OTHER: [(char, &str); 34] = [
         ('−', "-"),
+        ('ℒ', r"\mathcal{L}"),
+        ('½', r"\tfrac{1}{2}"),
         ('×', r"\times"),
         ('·', r"\cdot"),
         ('≤', r"\le"),

@@ -22,6 +22,12 @@ impl Document {
                     Block::Remark(p) => {
                         let _ = writeln!(out, "```{{note}}\n{p}\n```\n");
                     }
+                    Block::List(items) => {
+                        for item in items {
+                            let _ = writeln!(out, "- {item}");
+                        }
+                        out.push('\n');
+                    }
                     Block::Equations(lines) => {
                         let _ = writeln!(out, "$$\n\\begin{{aligned}}");
                         let _ = writeln!(out, "{}", aligned_lines(lines));

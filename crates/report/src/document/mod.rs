@@ -190,6 +190,8 @@ pub enum Block {
     },
     /// A remark worth noticing, like the seed's *Obs.*
     Remark(String),
+    /// A bulleted list of short paragraphs (the model's notes).
+    List(Vec<String>),
     /// A file written beside the document that a reader opens on its own (an animation).
     Link {
         /// The file name, relative to the document.

@@ -31,6 +31,15 @@ impl Document {
                         let _ =
                             writeln!(out, "{}", wrap_words(&format!("Obs. {p}"), COLUMNS, "  "));
                     }
+                    Block::List(items) => {
+                        for item in items {
+                            let _ = writeln!(
+                                out,
+                                "{}",
+                                wrap_words(&format!("• {item}"), COLUMNS, "  ")
+                            );
+                        }
+                    }
                     Block::Equations(lines) => {
                         for e in lines {
                             let _ =
