@@ -27,7 +27,7 @@ fn the_text_report_follows_the_course() {
         })
         .collect();
     assert!(positions.windows(2).all(|w| w[0] < w[1]), "{text}");
-    assert!(text.contains("  ∂L/∂ẋ = (m_A + m_B) ẋ + m_B ℓ θ̇ cos θ"));
+    assert!(text.contains("  ∂ℒ/∂ẋ = (m_A + m_B) ẋ + m_B ℓ θ̇ cos θ"));
     assert!(text.contains("  (m_A + m_B) ẍ + m_B ℓ θ̈ cos θ − m_B ℓ θ̇² sin θ + k x = F"));
     assert!(text.contains("  m_B ℓ (ℓ θ̈ + ẍ cos θ + g sin θ) = C"));
     assert!(text.contains(
