@@ -413,6 +413,41 @@ mod tests {
     }
 
     #[test]
+    fn markdown_displays_break_to_a_book_column_narrower_than_the_page() {
+        let rhs = (0..16)
+            .map(|i| format!(r"m_{i} \ddot{{x}}_{i}"))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        let mut s = Section::new("Wide", 2);
+        s.equations(vec![Equation::new(
+            Math::label("f", "f"),
+            Math::label("f", rhs),
+        )]);
+        let d = Document {
+            title: "t".into(),
+            sections: vec![s],
+        };
+        let rows = |out: &str, open: &str, close: &str| -> Vec<usize> {
+            let start = out.find(open).map_or(0, |i| i + open.len());
+            let end = out[start..].find(close).map_or(out.len(), |i| start + i);
+            out[start..end]
+                .split(" \\\\\n")
+                .map(visible_width)
+                .collect()
+        };
+        let md = rows(&d.to_markdown(), "\\begin{aligned}\n", "\n\\end{aligned}");
+        let tex = rows(&d.to_latex(), "\\begin{align*}\n", "\n\\end{align*}");
+        assert!(
+            md.iter().all(|w| *w <= super::markdown::MARKDOWN_LINE),
+            "{md:?}"
+        );
+        assert!(
+            tex.iter().any(|w| *w > super::markdown::MARKDOWN_LINE),
+            "{tex:?}"
+        );
+    }
+
+    #[test]
     fn long_latex_breaks_at_top_level_signs_only() {
         let rhs = format!(
             "{} + \\left({} + c\\right) - {}",
