@@ -208,6 +208,33 @@ impl Math {
     }
 }
 
+/// Blocks of lines (matrices written one row a line) set side by side, `sep` between them on
+/// their first line and as many spaces on the others; each block padded to its widest line.
+#[must_use]
+pub fn side_by_side(blocks: &[&str], sep: &str) -> String {
+    let height = blocks.iter().map(|b| b.lines().count()).max().unwrap_or(0);
+    let blank = " ".repeat(sep.chars().count());
+    let mut rows = vec![String::new(); height];
+    for (k, block) in blocks.iter().enumerate() {
+        let width = block.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+        let lines: Vec<&str> = block.lines().collect();
+        for (i, row) in rows.iter_mut().enumerate() {
+            if k > 0 {
+                row.push_str(if i == 0 { sep } else { &blank });
+            }
+            let line = lines.get(i).copied().unwrap_or("");
+            row.push_str(line);
+            if k + 1 < blocks.len() {
+                row.push_str(&" ".repeat(width - line.chars().count()));
+            }
+        }
+    }
+    rows.iter()
+        .map(|r| r.trim_end())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// Appends the sign of the next term of a sum written out by hand: a leading `−` for a
 /// negative first term, ` + ` or ` − ` between terms.
 pub(crate) fn push_sign(unicode: &mut String, latex: &mut String, negative: bool) {
