@@ -113,7 +113,31 @@ impl Analysis {
                 document.sections.push(section);
             }
         }
+        document.sections.splice(0..0, self.prose_sections());
         Ok(Solution { document, disagree })
+    }
+
+    /// The model's problem statement ("Problem", one paragraph per `problem` statement) and
+    /// its notes ("Notes on the model", a list), before the solution proper.
+    fn prose_sections(&self) -> Vec<Section> {
+        let Some(source) = self.source() else {
+            return Vec::new();
+        };
+        let prose = source.model.prose();
+        let mut sections = Vec::new();
+        if !prose.problem.is_empty() {
+            let mut section = Section::new("Problem", 2);
+            for paragraph in &prose.problem {
+                section.paragraph(paragraph.clone());
+            }
+            sections.push(section);
+        }
+        if !prose.notes.is_empty() {
+            let mut section = Section::new("Notes on the model", 2);
+            section.blocks.push(Block::List(prose.notes.clone()));
+            sections.push(section);
+        }
+        sections
     }
 
     /// The solution as JSON: the equations of motion (docs/json.md) with the document under
@@ -228,13 +252,16 @@ impl Analysis {
         simulation_section(Ok(&report))
     }
 
-    /// The report's title: the first sentence of the model's opening comment, else the file
-    /// name, else "Solution".
+    /// The report's title: the model's `title`, else the first sentence of its opening
+    /// comment, else the file name, else "Solution".
     #[must_use]
     pub fn title(&self) -> String {
         let Some(source) = self.source() else {
             return "Solution".into();
         };
+        if let Some((title, _)) = &source.model.prose().title {
+            return title.clone();
+        }
         let opening: Vec<&str> = source
             .text
             .lines()

@@ -378,6 +378,13 @@ pub enum StatementKind {
     Simulate(Vec<Setting>),
     /// `output x, y_B = dot(B, N.y)`.
     Output(Vec<OutputItem>),
+    /// `title "…"`: the report's title.
+    Title(String),
+    /// `problem "…" \ "…"`: one paragraph of the problem statement (the texts of one
+    /// statement joined by spaces).
+    Problem(String),
+    /// `note "…"`: a note on the model (an assumption, a correction of the source).
+    Note(String),
 }
 
 impl StatementKind {
@@ -407,6 +414,9 @@ impl StatementKind {
             StatementKind::Initial(_) => "initial",
             StatementKind::Simulate(_) => "simulate",
             StatementKind::Output(_) => "output",
+            StatementKind::Title(_) => "title",
+            StatementKind::Problem(_) => "problem",
+            StatementKind::Note(_) => "note",
         }
     }
 }

@@ -118,6 +118,9 @@ pub enum DiagnosticKind {
     /// An opening parenthesis without its closing one.
     #[error("unclosed parenthesis")]
     UnclosedParenthesis,
+    /// A text (`"…"`) whose line ends before its closing quote.
+    #[error("unclosed text: the line ends before the closing `\"`")]
+    UnclosedText,
     /// Expression nested deeper than the parser allows.
     #[error("expression is nested too deeply (more than {limit} levels)")]
     TooDeep {
@@ -378,6 +381,12 @@ pub enum DiagnosticKind {
         /// The first one.
         first: Span,
     },
+    /// A second `title` statement.
+    #[error("`title` is given twice")]
+    DuplicateTitle {
+        /// The first one.
+        first: Span,
+    },
     /// A constraint that involves no free coordinate (`l = 1`, `t = 0`).
     #[error("this constraint does not involve any coordinate")]
     ConstraintWithoutCoordinates,
@@ -497,6 +506,7 @@ impl DiagnosticKind {
             UnexpectedToken { .. } => "E002",
             UnknownStatement { .. } => "E003",
             UnclosedParenthesis => "E004",
+            UnclosedText => "E010",
             TooDeep { .. } => "E005",
             NumberOutOfRange { .. } => "E006",
             NumberUnderflow { .. } => "E009",
@@ -532,6 +542,7 @@ impl DiagnosticKind {
             NotARollingConstraint { .. } => "E315",
             InvalidSimulation { .. } => "E308",
             DuplicateSimulate { .. } => "E309",
+            DuplicateTitle { .. } => "E316",
             ConstraintWithoutCoordinates => "E310",
             NonPositiveMass { .. } => "E311",
             NegativeMoment { .. } => "E312",

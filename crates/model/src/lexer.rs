@@ -68,6 +68,12 @@ pub enum Token {
     /// `'`: the rate of a coordinate, `theta'`.
     #[token("'")]
     Prime,
+    /// Prose in double quotes on one line, for `title`, `problem` and `note`: `"A cart"`.
+    #[regex(r#""[^"\n]*""#)]
+    Text,
+    /// A `"` whose line ends before its closing quote (reported, then read as [`Token::Text`]).
+    #[regex(r#""[^"\n]*"#)]
+    UnclosedText,
     /// The end of the input (added by [`lex`], never produced by `logos`).
     Eof,
 }
@@ -93,6 +99,7 @@ impl Token {
             Token::Colon => "`:`",
             Token::Dot => "`.`",
             Token::Prime => "`'`",
+            Token::Text | Token::UnclosedText => "a text in double quotes",
             Token::Eof => "end of file",
         }
     }
@@ -138,6 +145,9 @@ pub(crate) const STATEMENT_KEYWORDS: &[&str] = &[
     "simulate",
     "output",
     "outputs",
+    "title",
+    "problem",
+    "note",
 ];
 
 /// Split `source` into tokens, ending with one [`Token::Eof`]. Characters that are not part of
@@ -150,6 +160,16 @@ pub fn lex(source: &str) -> (Vec<Spanned>, Vec<Diagnostic>) {
     while let Some(result) = lexer.next() {
         let span = Span::from(lexer.span());
         match result {
+            Ok(Token::UnclosedText) => {
+                diagnostics.push(
+                    Diagnostic::new(DiagnosticKind::UnclosedText, span)
+                        .with_help("Close the text with `\"` on the same line; continue a long text on the next line with `\\` and another `\"…\"`."),
+                );
+                raw.push(Spanned {
+                    token: Token::Text,
+                    span,
+                });
+            }
             Ok(token) => raw.push(Spanned { token, span }),
             Err(()) => {
                 // Merge adjacent bad characters into one diagnostic.
@@ -187,7 +207,6 @@ fn confusable_help(text: &str) -> &'static str {
         Some('÷') => "Divide with `/`.",
         Some(';') => "Write one statement per line; `;` does not separate statements.",
         Some('[' | ']' | '{' | '}') => "Group with parentheses `( )`.",
-        Some('"') => "The language has no strings: names are written bare.",
         _ => "Remove it. (Comments start with `#`.)",
     }
 }
@@ -282,6 +301,24 @@ mod tests {
         );
         // Invisible spaces are spaces.
         assert!(lex("\u{FEFF}x\u{A0}= 1").1.is_empty());
+    }
+
+    #[test]
+    fn texts_are_one_token_and_an_unclosed_one_is_reported() {
+        use Token::*;
+        assert_eq!(
+            kinds("title \"A cart # not a comment\" # a comment"),
+            vec![Name, Text, Newline, Eof]
+        );
+        assert_eq!(
+            kinds("note \"a\" \\\n  \"b\""),
+            vec![Name, Text, Text, Newline, Eof]
+        );
+        let (tokens, diagnostics) = lex("note \"open\nx");
+        assert_eq!(diagnostics.len(), 1);
+        assert_eq!(diagnostics[0].kind.code(), "E010");
+        assert_eq!(tokens[1].token, Text);
+        assert_eq!(tokens[2].token, Newline);
     }
 
     #[test]

@@ -44,7 +44,7 @@ pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
     ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,
     Function, Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output,
-    Parameter, ParameterId, Particle, Point, PointId, Quantity, ReactionTarget, Release,
+    Parameter, ParameterId, Particle, Point, PointId, Prose, Quantity, ReactionTarget, Release,
     ReleaseMember, Rotation, Simulation,
 };
 pub use overrides::OverrideError;

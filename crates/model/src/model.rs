@@ -637,6 +637,17 @@ pub enum Quantity {
     Reaction(ReactionTarget),
 }
 
+/// What the model says in words (`title`, `problem`, `note`), for the reports.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Prose {
+    /// The title and where it is written.
+    pub title: Option<(String, Span)>,
+    /// The problem statement, one paragraph per `problem` statement.
+    pub problem: Vec<String>,
+    /// The notes (assumptions, corrections of the source), one per `note` statement.
+    pub notes: Vec<String>,
+}
+
 /// A checked model. See the module doc for the ordering invariant.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
@@ -655,6 +666,7 @@ pub struct Model {
     pub(crate) initial: Vec<InitialValue>,
     pub(crate) simulation: Option<Simulation>,
     pub(crate) outputs: Vec<Output>,
+    pub(crate) prose: Prose,
     pub(crate) warnings: Vec<crate::diagnostic::Diagnostic>,
     pub(crate) declarations: Vec<Declaration>,
 }
@@ -770,6 +782,12 @@ impl Model {
     #[must_use]
     pub fn outputs(&self) -> &[Output] {
         &self.outputs
+    }
+
+    /// The title, problem statement and notes the model gives.
+    #[must_use]
+    pub fn prose(&self) -> &Prose {
+        &self.prose
     }
 
     /// Every coordinate, parameter, input, constant, frame, point, body and constraint, in

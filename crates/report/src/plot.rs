@@ -107,6 +107,41 @@ fn draw<DB: DrawingBackend>(
     draw_energy(&energy_panel, rows, n)
 }
 
+/// A column's name as the report writes it: `theta` → `θ`, `phi1_d` → `φ̇1`.
+fn display_name(column: &str) -> String {
+    let (name, order) = match column.strip_suffix("_d") {
+        Some(q) => (q, 1),
+        None => (column, 0),
+    };
+    cas::print::to_unicode(if order == 0 {
+        cas::Expr::coordinate(name)
+    } else {
+        cas::Expr::rate(name, 1)
+    })
+}
+
+/// A tick label: decimals enough for ticks about `span / 10` apart, and never `-0` or `-0.0`.
+fn tick(v: f64, span: f64) -> String {
+    let step = (span / 10.0).abs();
+    let decimals = if step > 0.0 && step.is_finite() {
+        usize::try_from((-step.log10().floor()).max(0.0) as i64)
+            .unwrap_or(0)
+            .min(8)
+    } else {
+        1
+    };
+    let text = format!("{v:.decimals$}");
+    if text
+        .trim_start_matches('-')
+        .chars()
+        .all(|c| c == '0' || c == '.')
+    {
+        text.trim_start_matches('-').to_string()
+    } else {
+        text.replace('-', "−")
+    }
+}
+
 /// The column `k` against time, finite values only.
 fn series(rows: &[Vec<f64>], k: usize) -> Vec<(f64, f64)> {
     rows.iter()
@@ -136,9 +171,13 @@ fn draw_histories<DB: DrawingBackend>(
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    let (t_span, q_span) = (t_range.1 - t_range.0, hi - lo);
     chart
         .configure_mesh()
-        .x_desc("t")
+        .x_desc("t (s)")
+        .y_desc("q (lengths in m, angles in rad)")
+        .x_label_formatter(&|v| tick(*v, t_span))
+        .y_label_formatter(&|v| tick(*v, q_span))
         .label_style((FAMILY, 14))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
@@ -149,13 +188,15 @@ fn draw_histories<DB: DrawingBackend>(
                 points.iter().copied(),
                 color.stroke_width(1),
             ))?
-            .label(columns[k + 1].as_str())
+            .label(display_name(&columns[k + 1]))
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
             });
     }
+    // In a corner, not over the middle of the curves.
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
         .label_font((FAMILY, 15))
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(200, 200, 200))
@@ -186,10 +227,13 @@ fn draw_portraits<DB: DrawingBackend>(
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(x.0..x.1, y.0..y.1)?;
+    let (x_span, y_span) = (x.1 - x.0, y.1 - y.0);
     chart
         .configure_mesh()
         .x_desc("q")
         .y_desc("dq/dt")
+        .x_label_formatter(&|v| tick(*v, x_span))
+        .y_label_formatter(&|v| tick(*v, y_span))
         .label_style((FAMILY, 14))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
@@ -232,9 +276,11 @@ fn draw_energy<DB: DrawingBackend>(
         .x_label_area_size(40)
         .y_label_area_size(90)
         .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    let t_span = t_range.1 - t_range.0;
     chart
         .configure_mesh()
-        .x_desc("t")
+        .x_desc("t (s)")
+        .x_label_formatter(&|v| tick(*v, t_span))
         .y_label_formatter(&|v| {
             // Ticks that are zero up to rounding print as 0, not 2.6e-26.
             if v.abs() < 1e-9 * (hi - lo) {
@@ -289,4 +335,71 @@ pub(crate) fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
         return (lo - pad, hi + pad);
     }
     (lo - 0.05 * span, hi + 0.05 * span)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_never_read_minus_zero() {
+        assert_eq!(tick(-0.0, 1.0), "0.0");
+        assert_eq!(tick(-0.00001, 1.0), "0.0");
+        assert_eq!(tick(-0.25, 1.0), "−0.2");
+        assert_eq!(tick(3.0, 10.0), "3");
+        assert_eq!(tick(0.05, 0.1), "0.05");
+    }
+
+    #[test]
+    fn legends_name_the_coordinates_as_the_report_does() {
+        assert_eq!(display_name("theta"), "θ");
+        assert_eq!(display_name("x"), "x");
+        assert_eq!(display_name("phi1_d"), "φ̇1");
+    }
+
+    #[test]
+    fn a_plot_has_units_unicode_names_and_no_minus_zero() {
+        let path = std::env::temp_dir().join(format!("lagrange-plot-{}.svg", std::process::id()));
+        let columns: Vec<String> = [
+            "t",
+            "x",
+            "theta",
+            "x_d",
+            "theta_d",
+            "energy_error",
+            "constraint_drift",
+        ]
+        .iter()
+        .map(|s| (*s).to_string())
+        .collect();
+        let rows: Vec<Vec<f64>> = (0..200)
+            .map(|i| {
+                let t = f64::from(i) * 0.05;
+                vec![
+                    t,
+                    0.1 * t.cos(),
+                    0.3 * (2.0 * t).sin(),
+                    -0.1 * t.sin(),
+                    0.6 * (2.0 * t).cos(),
+                    1e-9 * t,
+                    0.0,
+                ]
+            })
+            .collect();
+        plot_run(&path, "test", &columns, &rows).expect("plotted");
+        // The backend writes each text on a line of its own between its tags.
+        let svg = std::fs::read_to_string(&path)
+            .expect("written")
+            .replace('\n', "");
+        let _ = std::fs::remove_file(&path);
+        assert!(svg.contains(">θ<"), "no θ in the legend");
+        assert!(
+            svg.contains("angles in rad"),
+            "no unit on the coordinates axis"
+        );
+        assert!(
+            !svg.contains(">-0.0<") && !svg.contains(">-0<") && !svg.contains(">−0.0<"),
+            "a minus zero tick"
+        );
+    }
 }

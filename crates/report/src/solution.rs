@@ -194,9 +194,12 @@ fn lagrangian_section(equations: &Equations, notation: &Notation) -> Section {
     let v = equations.potential_energy();
     s.equations(vec![
         Equation::new(Math::label("K", "K"), notation.math(k)),
-        Equation::new(Math::label("U", "U"), notation.math(-v)),
+        Equation::new(Math::label("U", "U"), notation.sum(-v)),
         Equation::new(
-            Math::label("L = K + U", "L = K + U"),
+            Math::label(
+                format!("{} = K + U", notation.lagrangian().unicode),
+                format!("{} = K + U", notation.lagrangian().latex),
+            ),
             notation.math(equations.lagrangian()),
         ),
     ]);
@@ -209,10 +212,11 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
     let coordinates = equations.coordinates();
     let n = coordinates.len();
     if n <= STEP_BY_STEP_MAX {
-        s.paragraph(
-            "For every coordinate q: d/dt(∂L/∂q̇) − ∂L/∂q = Q_q, with Q_q the generalized force \
-             of the loads not in U, by virtual work.",
-        );
+        let l = &notation.lagrangian().unicode;
+        s.paragraph(format!(
+            "For every coordinate q: d/dt(∂{l}/∂q̇) − ∂{l}/∂q = Q_q, with Q_q the generalized \
+             force of the loads not in U, by virtual work."
+        ));
         derivative_steps(&mut s, equations, notation);
     } else {
         s.paragraph(format!(
@@ -234,6 +238,7 @@ fn lagrange_section(equations: &Equations, notation: &Notation) -> Section {
 fn derivative_steps(s: &mut Section, equations: &Equations, notation: &Notation) {
     let lagrangian = equations.lagrangian();
     let coordinates = equations.coordinates();
+    let (lu, ll) = (&notation.lagrangian().unicode, &notation.lagrangian().latex);
     for (j, q) in coordinates.iter().enumerate() {
         let (qs, qd) = (coordinate(q), rate(q, 1));
         let Some(qd_symbol) = Expr::rate(q, 1).as_symbol() else {
@@ -246,8 +251,8 @@ fn derivative_steps(s: &mut Section, equations: &Equations, notation: &Notation)
         let d_momentum = momentum.dt().normal();
         let dl_dq = lagrangian.diff(q_symbol).normal();
         let dl_dqd_label = Math::label(
-            format!("∂L/∂{}", qd.unicode),
-            format!(r"\frac{{\partial L}}{{\partial {}}}", qd.latex),
+            format!("∂{lu}/∂{}", qd.unicode),
+            format!(r"\frac{{\partial {ll}}}{{\partial {}}}", qd.latex),
         );
         s.blocks
             .push(Block::Paragraph(format!("Coordinate {}:", qs.unicode)));
@@ -255,9 +260,9 @@ fn derivative_steps(s: &mut Section, equations: &Equations, notation: &Notation)
             Equation::new(dl_dqd_label.clone(), notation.math(momentum)),
             Equation::new(
                 Math::label(
-                    format!("d/dt(∂L/∂{})", qd.unicode),
+                    format!("d/dt(∂{lu}/∂{})", qd.unicode),
                     format!(
-                        r"\frac{{d}}{{dt}} \frac{{\partial L}}{{\partial {}}}",
+                        r"\frac{{d}}{{dt}} \frac{{\partial {ll}}}{{\partial {}}}",
                         qd.latex
                     ),
                 ),
@@ -265,8 +270,8 @@ fn derivative_steps(s: &mut Section, equations: &Equations, notation: &Notation)
             ),
             Equation::new(
                 Math::label(
-                    format!("∂L/∂{}", qs.unicode),
-                    format!(r"\frac{{\partial L}}{{\partial {}}}", qs.latex),
+                    format!("∂{lu}/∂{}", qs.unicode),
+                    format!(r"\frac{{\partial {ll}}}{{\partial {}}}", qs.latex),
                 ),
                 notation.math(dl_dq),
             ),
@@ -414,7 +419,7 @@ fn first_integrals_section(equations: &Equations, notation: &Notation) -> Sectio
                 ("the energy h = K + V".to_string(), Math::label("h", "h"))
             }
             None => (
-                "the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L (not K + V: the constraints move)"
+                "the Jacobi integral h = Σ q̇ ∂ℒ/∂q̇ − ℒ (not K + V: the constraints move)"
                     .to_string(),
                 Math::label("h", "h"),
             ),
@@ -487,15 +492,15 @@ mod tests {
         let text = doc.to_text();
         assert!(text.contains("  r_P = ℓ sin θ x̂ − ℓ cos θ ŷ"), "{text}");
         assert!(text.contains("  v_P = ℓ θ̇ cos θ x̂ + ℓ θ̇ sin θ ŷ"), "{text}");
-        assert!(text.contains("  ∂L/∂θ̇ = m ℓ² θ̇"), "{text}");
-        assert!(text.contains("  d/dt(∂L/∂θ̇) = m ℓ² θ̈"), "{text}");
-        assert!(text.contains("  ∂L/∂θ = −m g ℓ sin θ"), "{text}");
+        assert!(text.contains("  ∂ℒ/∂θ̇ = m ℓ² θ̇"), "{text}");
+        assert!(text.contains("  d/dt(∂ℒ/∂θ̇) = m ℓ² θ̈"), "{text}");
+        assert!(text.contains("  ∂ℒ/∂θ = −m g ℓ sin θ"), "{text}");
         assert!(text.contains("  Q_θ = 0"), "{text}");
         assert!(text.contains("  θ̈ = −g sin θ/ℓ"), "{text}");
         assert!(text.contains("Energy method"), "{text}");
         let md = doc.to_markdown();
         assert!(
-            md.contains(r"\frac{\partial L}{\partial \dot{\theta}} &= "),
+            md.contains(r"\frac{\partial \mathcal{L}}{\partial \dot{\theta}} &= "),
             "{md}"
         );
     }

@@ -152,6 +152,42 @@ fn stability_sentence(i: usize, e: &Equilibrium, l: &LinearizedResult) -> Option
     (!sentence.is_empty()).then(|| sentence.trim_start().to_string())
 }
 
+/// A matrix for the terminal: one row a line, the columns aligned, in tall brackets
+/// (`⎡3    0.5 ⎤` over `⎣0.5  0.25⎦`); a single row in `[ ]`.
+fn matrix_rows(cells: &[Vec<String>]) -> String {
+    let columns = cells.iter().map(Vec::len).max().unwrap_or(0);
+    let widths: Vec<usize> = (0..columns)
+        .map(|j| {
+            cells
+                .iter()
+                .filter_map(|r| r.get(j))
+                .map(|c| c.chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let n = cells.len();
+    cells
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let (open, close) = match (n, i) {
+                (1, _) => ('[', ']'),
+                (_, 0) => ('⎡', '⎤'),
+                (_, i) if i + 1 == n => ('⎣', '⎦'),
+                _ => ('⎢', '⎥'),
+            };
+            let row: Vec<String> = r
+                .iter()
+                .zip(&widths)
+                .map(|(c, w)| format!("{c}{}", " ".repeat(w - c.chars().count())))
+                .collect();
+            format!("{open}{}{close}", row.join("  "))
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// A numeric matrix in both notations.
 fn matrix(m: &[Vec<f64>]) -> Math {
     let cell = |v: f64| {
@@ -165,16 +201,11 @@ fn matrix(m: &[Vec<f64>]) -> Math {
             text.to_string()
         }
     };
-    let unicode = m
+    let cells: Vec<Vec<String>> = m
         .iter()
-        .map(|r| {
-            format!(
-                "[{}]",
-                r.iter().map(|v| cell(*v)).collect::<Vec<_>>().join(", ")
-            )
-        })
-        .collect::<Vec<_>>()
-        .join(" ");
+        .map(|r| r.iter().map(|v| cell(*v)).collect())
+        .collect();
+    let unicode = matrix_rows(&cells);
     let latex = format!(
         r"\begin{{pmatrix}} {} \end{{pmatrix}}",
         m.iter()
@@ -187,19 +218,11 @@ fn matrix(m: &[Vec<f64>]) -> Math {
 
 /// A symbolic matrix in both notations.
 fn exact_matrix(m: &[Vec<Expr>], notation: &Notation) -> Math {
-    let unicode = m
+    let cells: Vec<Vec<String>> = m
         .iter()
-        .map(|r| {
-            format!(
-                "[{}]",
-                r.iter()
-                    .map(|e| notation.math(*e).unicode)
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        })
-        .collect::<Vec<_>>()
-        .join(" ");
+        .map(|r| r.iter().map(|e| notation.math(*e).unicode).collect())
+        .collect();
+    let unicode = matrix_rows(&cells);
     let latex = format!(
         r"\begin{{pmatrix}} {} \end{{pmatrix}}",
         m.iter()
@@ -388,12 +411,14 @@ fn linear_lines(l: &Linearized, notation: &Notation) -> Vec<Equation> {
                 Some(exact) => {
                     let symbolic = exact_matrix(&exact[k], notation);
                     // In a terminal a long symbolic matrix does not fit: the numbers only.
-                    let both =
-                        symbolic.unicode.chars().count() + 3 + numbers.unicode.chars().count();
-                    let unicode = if both > 72 {
+                    let both = crate::document::side_by_side(
+                        &[&symbolic.unicode, &numbers.unicode],
+                        " = ",
+                    );
+                    let unicode = if both.lines().any(|l| l.chars().count() > 72) {
                         numbers.unicode.clone()
                     } else {
-                        format!("{} = {}", symbolic.unicode, numbers.unicode)
+                        both
                     };
                     Math::label(unicode, format!("{} = {}", symbolic.latex, numbers.latex))
                 }

@@ -85,6 +85,18 @@ pub fn compact(e: Expr) -> Expr {
     compact::compact(e)
 }
 
+/// The terms of a sum in the order people read them (the order [`to_unicode`] prints a sum
+/// that it does not regroup); any other expression is one term.
+#[must_use]
+pub fn terms_in_print_order(e: Expr) -> Vec<Expr> {
+    let mut terms = match e.node() {
+        crate::expr::Node::Add(terms) => terms.to_vec(),
+        _ => vec![e],
+    };
+    order::sort_terms(&mut terms);
+    terms
+}
+
 impl fmt::Display for Expr {
     /// The Unicode form ([`to_unicode`]).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -346,7 +358,7 @@ mod tests {
             ),
             (-(x + y), "-(x + y)", "−(x + y)", r"-\left( x + y \right)"),
             (s("omega") * Expr::time(), "omega*t", "ω t", r"\omega t"),
-            (r("phi", 3), "phi_ddd", "φ⃛", r"\dddot{\phi}"),
+            (r("phi", 3), "phi_ddd", "φ⃛", r"\dddot{\varphi}"),
         ];
         for (e, sympy, unicode, latex) in cases {
             assert_eq!(

@@ -27,7 +27,7 @@ const GREEK: &[(&str, char, &str)] = &[
     ("sigma", 'σ', r"\sigma"),
     ("tau", 'τ', r"\tau"),
     ("upsilon", 'υ', r"\upsilon"),
-    ("phi", 'φ', r"\phi"),
+    ("phi", 'φ', r"\varphi"),
     ("varphi", 'φ', r"\varphi"),
     ("chi", 'χ', r"\chi"),
     ("psi", 'ψ', r"\psi"),

@@ -52,6 +52,7 @@ pub fn check(ast: &Ast) -> Result<Model, Vec<Diagnostic>> {
             initial: Vec::new(),
             simulation: None,
             outputs: Vec::new(),
+            prose: crate::model::Prose::default(),
             warnings: Vec::new(),
             declarations: Vec::new(),
         },
@@ -269,6 +270,9 @@ impl Checker {
                     self.output(item);
                 }
             }
+            StatementKind::Title(text) => self.title(text, span),
+            StatementKind::Problem(text) => self.model.prose.problem.push(text.clone()),
+            StatementKind::Note(text) => self.model.prose.notes.push(text.clone()),
         }
     }
 }

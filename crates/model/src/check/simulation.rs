@@ -1,4 +1,5 @@
-//! The run-time statements: initial values, `simulate` settings and `output` items.
+//! The run-time statements: initial values, `simulate` settings and `output` items; and the
+//! report's `title` (one per file).
 
 use super::expr::Place;
 use super::scope::Target;
@@ -68,6 +69,20 @@ impl Checker {
                 value: checked,
             });
         }
+    }
+
+    /// `title "…"`: one per file.
+    pub(super) fn title(&mut self, text: &str, span: Span) {
+        if let Some((_, first)) = &self.model.prose.title {
+            let first = *first;
+            self.diagnostics.push(
+                Diagnostic::new(DiagnosticKind::DuplicateTitle { first }, span)
+                    .with_related(first, "the first `title`")
+                    .with_help("Keep one `title`; put more words into `problem` or `note`."),
+            );
+            return;
+        }
+        self.model.prose.title = Some((text.to_string(), span));
     }
 
     pub(super) fn simulate(&mut self, settings: &[ast::Setting], span: Span) {

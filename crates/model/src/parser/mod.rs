@@ -360,6 +360,22 @@ mod tests {
     }
 
     #[test]
+    fn title_problem_and_note_take_quoted_prose() {
+        assert_eq!(
+            only("title \"Exercise 7.1 — a cart\""),
+            StatementKind::Title("Exercise 7.1 — a cart".into())
+        );
+        assert_eq!(
+            only("problem \"A cart of mass m_A \" \\\n   \" slides.\""),
+            StatementKind::Problem("A cart of mass m_A slides.".into())
+        );
+        assert_eq!(only("note \"x\""), StatementKind::Note("x".into()));
+        let (_, diagnostics) = parse("note\n");
+        assert_eq!(diagnostics.len(), 1);
+        assert_eq!(diagnostics[0].kind.code(), "E002");
+    }
+
+    #[test]
     fn springs_dampers_and_frames() {
         let StatementKind::Spring {
             connection: Connection::Scalar(_),

@@ -103,6 +103,9 @@ impl<'s> Parser<'s> {
             "reaction" | "reactions" => self.reactions()?,
             "initial" => self.initial()?,
             "simulate" => self.simulate()?,
+            "title" => StatementKind::Title(self.prose("title")?),
+            "problem" => StatementKind::Problem(self.prose("problem")?),
+            "note" => StatementKind::Note(self.prose("note")?),
             _ => self.output()?,
         })
     }
@@ -120,7 +123,7 @@ impl<'s> Parser<'s> {
             | "constant" | "constants" | "driven" | "frame" | "point" | "particle" | "body"
             | "gravity" | "spring" | "damper" | "dissipation" | "potential" | "force"
             | "couple" | "generalized" | "constraint" | "reaction" | "reactions" | "initial"
-            | "simulate" | "output" | "outputs" => word,
+            | "simulate" | "output" | "outputs" | "title" | "problem" | "note" => word,
             _ => {
                 let mut diagnostic = Diagnostic::new(
                     DiagnosticKind::UnknownStatement {
@@ -551,6 +554,23 @@ impl<'s> Parser<'s> {
             self.eat(Token::Comma);
         }
         Ok(StatementKind::Simulate(settings))
+    }
+
+    /// The prose of `title`, `problem` or `note`: one or more texts in double quotes (several
+    /// when `\` continues the statement), joined by single spaces.
+    fn prose(&mut self, keyword: &str) -> ParseResult<String> {
+        let mut parts = Vec::new();
+        while let Some(token) = self.eat(Token::Text) {
+            let quoted = self.text(token.span);
+            let inner = quoted.strip_prefix('"').unwrap_or(quoted);
+            parts.push(inner.strip_suffix('"').unwrap_or(inner).trim());
+        }
+        if parts.is_empty() {
+            return Err(self
+                .unexpected("a text in double quotes")
+                .with_help(format!("Write `{keyword} \"…\"`.")));
+        }
+        Ok(parts.join(" "))
     }
 
     fn output(&mut self) -> ParseResult<StatementKind> {

@@ -19,6 +19,7 @@ impl Document {
                     .map(|b| match b {
                         Block::Paragraph(p) => json!({ "kind": "paragraph", "text": p }),
                         Block::Remark(p) => json!({ "kind": "remark", "text": p }),
+                        Block::List(items) => json!({ "kind": "list", "items": items }),
                         Block::Equations(lines) => json!({
                             "kind": "equations",
                             "lines": lines.iter().map(|e| json!({ "lhs": math(&e.lhs), "rhs": math(&e.rhs) })).collect::<Vec<_>>(),

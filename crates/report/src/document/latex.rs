@@ -37,6 +37,13 @@ impl Document {
                     Block::Remark(p) => {
                         let _ = writeln!(out, "\\textit{{Obs.}} {}\n", latex_text(p));
                     }
+                    Block::List(items) => {
+                        let _ = writeln!(out, "\\begin{{itemize}}");
+                        for item in items {
+                            let _ = writeln!(out, "\\item {}", latex_text(item));
+                        }
+                        let _ = writeln!(out, "\\end{{itemize}}\n");
+                    }
                     Block::Equations(lines) => {
                         let _ = writeln!(out, "\\begin{{align*}}");
                         let _ = writeln!(out, "{}", aligned_lines(lines));
@@ -101,11 +108,18 @@ pub(super) const LATEX_LINE: usize = 72;
 /// side that still does not fit is rewritten so that it can break inside its brackets too
 /// ([`breakable_latex`]).
 pub(super) fn aligned_lines(lines: &[Equation]) -> String {
+    aligned_lines_to(lines, LATEX_LINE)
+}
+
+/// [`aligned_lines`] broken to `line` glyphs (see [`visible_width`]) instead of the LaTeX page's
+/// [`LATEX_LINE`]: the Markdown rendering breaks to a book's narrower column.
+pub(super) fn aligned_lines_to(lines: &[Equation], line: usize) -> String {
     let mut rows = Vec::new();
     for e in lines {
         // A long left-hand side (an equation of motion `… = 0`) is broken like a right-hand
         // side: the whole equation goes right of the alignment point.
-        let (head, body) = if visible_width(&e.lhs.latex) > LATEX_LINE / 2 {
+        let long_lhs = visible_width(&e.lhs.latex) > line / 2;
+        let (head, body) = if long_lhs {
             (
                 "& ".to_string(),
                 format!("{} = {}", e.lhs.latex, e.rhs.latex),
@@ -113,32 +127,83 @@ pub(super) fn aligned_lines(lines: &[Equation]) -> String {
         } else {
             (format!("{} &= ", e.lhs.latex), e.rhs.latex.clone())
         };
-        let mut pieces = latex_terms(&body);
-        let head_width = visible_width(&head);
-        let room = LATEX_LINE - head_width.min(LATEX_LINE / 2);
-        let rewritten;
-        if pieces.iter().any(|p| visible_width(p) > room) {
-            rewritten = breakable_latex(&body);
-            pieces = latex_pieces(&rewritten, false);
+        // A chain `a = b` on the right (a matrix and its value) that does not fit goes on
+        // rows of its own, each `&= …`.
+        let chain = if !long_lhs && visible_width(&head) + visible_width(&body) > line {
+            top_level_equals(&body)
+        } else {
+            vec![body.as_str()]
+        };
+        for (k, part) in chain.into_iter().enumerate() {
+            let head = if k == 0 {
+                head.clone()
+            } else {
+                "&= ".to_string()
+            };
+            break_row(&mut rows, head, part, line);
         }
-        let mut current = head;
-        let mut width = head_width;
-        let mut first = true;
-        for term in pieces {
-            let term_width = visible_width(term);
-            if !first && width + term_width > LATEX_LINE {
-                rows.push(current.trim_end().to_string());
-                current = String::from("&\\quad ");
-                width = 2;
-            }
-            current.push_str(term.trim_start());
-            current.push(' ');
-            width += term_width;
-            first = false;
-        }
-        rows.push(current.trim_end().to_string());
     }
     rows.join(" \\\\\n")
+}
+
+/// The parts of `body` between its ` = ` signs outside braces and environments.
+fn top_level_equals(body: &str) -> Vec<&str> {
+    let mut parts = Vec::new();
+    let mut depth = 0i32;
+    let mut start = 0;
+    let bytes = body.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        let rest = &body[i..];
+        if rest.starts_with("\\begin{") || rest.starts_with("\\left") {
+            depth += 1;
+        } else if rest.starts_with("\\end{") || rest.starts_with("\\right") {
+            depth -= 1;
+        }
+        match bytes[i] {
+            b'{' => depth += 1,
+            b'}' => depth -= 1,
+            b' ' if depth == 0 && rest.starts_with(" = ") => {
+                parts.push(body[start..i].trim());
+                start = i + 3;
+                i += 3;
+                continue;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    parts.push(body[start..].trim());
+    parts
+}
+
+/// One display row `head body`, broken before a `+`/`-` onto continuation rows when wider
+/// than `line` glyphs.
+fn break_row(rows: &mut Vec<String>, head: String, body: &str, line: usize) {
+    let mut pieces = latex_terms(body);
+    let head_width = visible_width(&head);
+    let room = line - head_width.min(line / 2);
+    let rewritten;
+    if pieces.iter().any(|p| visible_width(p) > room) {
+        rewritten = breakable_latex(body);
+        pieces = latex_pieces(&rewritten, false);
+    }
+    let mut current = head;
+    let mut width = head_width;
+    let mut first = true;
+    for term in pieces {
+        let term_width = visible_width(term);
+        if !first && width + term_width > line {
+            rows.push(current.trim_end().to_string());
+            current = String::from("&\\quad ");
+            width = 2;
+        }
+        current.push_str(term.trim_start());
+        current.push(' ');
+        width += term_width;
+        first = false;
+    }
+    rows.push(current.trim_end().to_string());
 }
 
 /// About how many glyph widths LaTeX mathematics takes on the page: a command such as
@@ -504,8 +569,10 @@ fn math_symbol(ch: char) -> Option<&'static str> {
         ('√', r"\surd"),
         ('∇', r"\nabla"),
     ];
-    const OTHER: [(char, &str); 32] = [
+    const OTHER: [(char, &str); 34] = [
         ('−', "-"),
+        ('ℒ', r"\mathcal{L}"),
+        ('½', r"\tfrac{1}{2}"),
         ('×', r"\times"),
         ('·', r"\cdot"),
         ('≤', r"\le"),

@@ -2,7 +2,12 @@
 
 use std::fmt::Write as _;
 
-use super::latex::aligned_lines;
+use super::latex::aligned_lines_to;
+
+/// Glyphs per display line of the Markdown rendering (see `latex::visible_width`): a Jupyter
+/// Book's text column (about 790 px in a 1000 px window) in MathJax's type, with room to spare;
+/// `tools/browser/book.py` checks that no display is wider than the column.
+pub(super) const MARKDOWN_LINE: usize = 58;
 use super::{Block, Cell, Document};
 
 impl Document {
@@ -22,9 +27,15 @@ impl Document {
                     Block::Remark(p) => {
                         let _ = writeln!(out, "```{{note}}\n{p}\n```\n");
                     }
+                    Block::List(items) => {
+                        for item in items {
+                            let _ = writeln!(out, "- {item}");
+                        }
+                        out.push('\n');
+                    }
                     Block::Equations(lines) => {
                         let _ = writeln!(out, "$$\n\\begin{{aligned}}");
-                        let _ = writeln!(out, "{}", aligned_lines(lines));
+                        let _ = writeln!(out, "{}", aligned_lines_to(lines, MARKDOWN_LINE));
                         let _ = writeln!(out, "\\end{{aligned}}\n$$\n");
                     }
                     Block::Table { header, rows } => {

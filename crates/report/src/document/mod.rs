@@ -16,13 +16,28 @@ use cas::Expr;
 
 use text::top_level_terms;
 
+/// A sum is written term by term ([`Notation::sum`]) only up to this many terms.
+const TERMWISE_MAX: usize = 4;
+
 /// How a report writes the system's expressions: the model's named constants folded back in
 /// (`m g b sin θ`, not `m g d cos² α sin θ`) and a time-independent denominator spread over
 /// the terms (`(I1 + I2 r²) φ̈1`, not one fraction over `R2²`); see
-/// [`cas::print::spread_and_fold`]. The value is never changed.
-#[derive(Clone, Debug, Default)]
+/// [`cas::print::spread_and_fold`]. The value is never changed. It also names the Lagrangian:
+/// `ℒ` (`\mathcal{L}`) as the course writes it, so that a length `L` reads apart from it;
+/// [`Notation::with_lagrangian`] changes that (docs/solve.md).
+#[derive(Clone, Debug)]
 pub struct Notation {
     names: Vec<(Expr, Expr)>,
+    lagrangian: Math,
+}
+
+impl Default for Notation {
+    fn default() -> Notation {
+        Notation {
+            names: Vec::new(),
+            lagrangian: Math::label("ℒ", r"\mathcal{L}"),
+        }
+    }
 }
 
 impl Notation {
@@ -35,7 +50,22 @@ impl Notation {
                 .iter()
                 .map(|(name, value)| (Expr::symbol(name), *value))
                 .collect(),
+            ..Notation::default()
         }
+    }
+
+    /// The same notation with another symbol for the Lagrangian (`"L"`, `"L"`; default `ℒ`,
+    /// `\mathcal{L}`).
+    #[must_use]
+    pub fn with_lagrangian(mut self, unicode: &str, latex: &str) -> Notation {
+        self.lagrangian = Math::label(unicode, latex);
+        self
+    }
+
+    /// The symbol of the Lagrangian in both notations.
+    #[must_use]
+    pub fn lagrangian(&self) -> &Math {
+        &self.lagrangian
     }
 
     /// The expression as people read it in this notation.
@@ -44,10 +74,51 @@ impl Notation {
         cas::print::spread_and_fold(e, &self.names)
     }
 
-    /// [`Math::expr`] of the shaped expression.
+    /// [`Math::expr`] of the shaped expression; a sum whose compact form puts a minus sign
+    /// in front of a bracket of terms with mixed signs (`−½ (k x² − 2 m_B g ℓ cos θ)`) is
+    /// written term by term instead (`−½ k x² + m_B g ℓ cos θ`, as the course writes it)
+    /// when that is not longer.
     #[must_use]
     pub fn math(&self, e: Expr) -> Math {
-        Math::expr(self.shape(e))
+        self.unbracketed(e, true)
+    }
+
+    /// [`Notation::math`] of a sum the course writes term by term, like the force function
+    /// (`U = −½ k θ² − m g ℓ sin θ`): a minus sign in front of a bracket is given back to the
+    /// terms whatever their signs, when that is not longer.
+    #[must_use]
+    pub fn sum(&self, e: Expr) -> Math {
+        self.unbracketed(e, false)
+    }
+
+    fn unbracketed(&self, e: Expr, only_mixed: bool) -> Math {
+        let whole = Math::expr(self.shape(e));
+        if !whole.unicode.starts_with('−') || !whole.unicode.contains('(') {
+            return whole;
+        }
+        let e = e.normal();
+        if !matches!(e.node(), cas::Node::Add(_)) {
+            return whole;
+        }
+        let shaped: Vec<Expr> = cas::print::terms_in_print_order(e)
+            .into_iter()
+            .map(|t| self.shape(t))
+            .collect();
+        let negative: Vec<bool> = shaped
+            .iter()
+            .map(|t| to_unicode(*t).starts_with('−'))
+            .collect();
+        let mixed = negative.iter().any(|n| *n) && !negative.iter().all(|n| *n);
+        // A long sum keeps the grouping of its compact form (`(k1 + k2) x1²`).
+        if !(2..=TERMWISE_MAX).contains(&shaped.len()) || (only_mixed && !mixed) {
+            return whole;
+        }
+        let termwise = Math::terms(&shaped);
+        if termwise.unicode.chars().count() <= whole.unicode.chars().count() {
+            termwise
+        } else {
+            whole
+        }
     }
 
     /// [`Math::vector`] of the shaped components.
@@ -85,6 +156,24 @@ impl Math {
         }
     }
 
+    /// A sum written term by term, in the order given: `−½ k x² + m_B g ℓ cos θ`.
+    #[must_use]
+    pub fn terms(terms: &[Expr]) -> Math {
+        let mut unicode = String::new();
+        let mut latex = String::new();
+        for t in terms {
+            let negative = to_unicode(*t).starts_with('−');
+            let magnitude = if negative { -*t } else { *t };
+            push_sign(&mut unicode, &mut latex, negative);
+            unicode.push_str(&to_unicode(magnitude));
+            latex.push_str(&to_latex(magnitude));
+        }
+        if unicode.is_empty() {
+            return Math::label("0", "0");
+        }
+        Math { unicode, latex }
+    }
+
     /// A vector from its inertial components, as the seed writes it: `a x̂ + b ŷ + c ẑ`.
     #[must_use]
     pub fn vector(components: &[Expr; 3]) -> Math {
@@ -117,6 +206,33 @@ impl Math {
         }
         Math { unicode, latex }
     }
+}
+
+/// Blocks of lines (matrices written one row a line) set side by side, `sep` between them on
+/// their first line and as many spaces on the others; each block padded to its widest line.
+#[must_use]
+pub fn side_by_side(blocks: &[&str], sep: &str) -> String {
+    let height = blocks.iter().map(|b| b.lines().count()).max().unwrap_or(0);
+    let blank = " ".repeat(sep.chars().count());
+    let mut rows = vec![String::new(); height];
+    for (k, block) in blocks.iter().enumerate() {
+        let width = block.lines().map(|l| l.chars().count()).max().unwrap_or(0);
+        let lines: Vec<&str> = block.lines().collect();
+        for (i, row) in rows.iter_mut().enumerate() {
+            if k > 0 {
+                row.push_str(if i == 0 { sep } else { &blank });
+            }
+            let line = lines.get(i).copied().unwrap_or("");
+            row.push_str(line);
+            if k + 1 < blocks.len() {
+                row.push_str(&" ".repeat(width - line.chars().count()));
+            }
+        }
+    }
+    rows.iter()
+        .map(|r| r.trim_end())
+        .collect::<Vec<_>>()
+        .join("\n")
 }
 
 /// Appends the sign of the next term of a sum written out by hand: a leading `−` for a
@@ -190,6 +306,8 @@ pub enum Block {
     },
     /// A remark worth noticing, like the seed's *Obs.*
     Remark(String),
+    /// A bulleted list of short paragraphs (the model's notes).
+    List(Vec<String>),
     /// A file written beside the document that a reader opens on its own (an animation).
     Link {
         /// The file name, relative to the document.
@@ -318,6 +436,41 @@ mod tests {
         assert_eq!(
             tex.matches("\\begin{align*}").count(),
             tex.matches("\\end{align*}").count()
+        );
+    }
+
+    #[test]
+    fn markdown_displays_break_to_a_book_column_narrower_than_the_page() {
+        let rhs = (0..16)
+            .map(|i| format!(r"m_{i} \ddot{{x}}_{i}"))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        let mut s = Section::new("Wide", 2);
+        s.equations(vec![Equation::new(
+            Math::label("f", "f"),
+            Math::label("f", rhs),
+        )]);
+        let d = Document {
+            title: "t".into(),
+            sections: vec![s],
+        };
+        let rows = |out: &str, open: &str, close: &str| -> Vec<usize> {
+            let start = out.find(open).map_or(0, |i| i + open.len());
+            let end = out[start..].find(close).map_or(out.len(), |i| start + i);
+            out[start..end]
+                .split(" \\\\\n")
+                .map(visible_width)
+                .collect()
+        };
+        let md = rows(&d.to_markdown(), "\\begin{aligned}\n", "\n\\end{aligned}");
+        let tex = rows(&d.to_latex(), "\\begin{align*}\n", "\n\\end{align*}");
+        assert!(
+            md.iter().all(|w| *w <= super::markdown::MARKDOWN_LINE),
+            "{md:?}"
+        );
+        assert!(
+            tex.iter().any(|w| *w > super::markdown::MARKDOWN_LINE),
+            "{tex:?}"
         );
     }
 

@@ -31,6 +31,15 @@ impl Document {
                         let _ =
                             writeln!(out, "{}", wrap_words(&format!("Obs. {p}"), COLUMNS, "  "));
                     }
+                    Block::List(items) => {
+                        for item in items {
+                            let _ = writeln!(
+                                out,
+                                "{}",
+                                wrap_words(&format!("• {item}"), COLUMNS, "  ")
+                            );
+                        }
+                    }
                     Block::Equations(lines) => {
                         for e in lines {
                             let _ =
@@ -75,6 +84,10 @@ pub(super) fn wrap_words(text: &str, width: usize, indent: &str) -> String {
 /// `  lhs = rhs`, broken before the ` + ` / ` − ` nearest the top level when longer than the
 /// terminal: outside parentheses first, then one level in, and so on.
 pub(super) fn wrap_equation(lhs: &str, rhs: &str) -> String {
+    // A matrix, one row a line: set beside its name, not wrapped.
+    if rhs.contains('\n') {
+        return super::side_by_side(&[&format!("  {lhs}"), rhs], " = ");
+    }
     let head = format!("  {lhs} = ");
     let full = format!("{head}{rhs}");
     if full.chars().count() <= COLUMNS {

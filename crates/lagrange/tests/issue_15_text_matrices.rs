@@ -1,0 +1,22 @@
+//! Issue 15: in the terminal a matrix printed as `M0 = [3, 0.5] [0.5, 0.25]`, its rows run
+//! together on one line. Each row now has a line of its own, the columns aligned, in tall
+//! brackets, and a symbolic matrix and its value stand side by side.
+
+use lagrange::Analysis;
+
+#[test]
+fn matrices_print_one_row_a_line_with_their_columns_aligned() {
+    let seed = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/seed");
+    let cart = Analysis::from_file(&seed.join("7.1-cart-pendulum.lag")).expect("7.1");
+    let text = cart.solution(None).expect("a solution").document.to_text();
+    assert!(
+        text.contains("  M0 = ⎡3    0.5 ⎤\n       ⎣0.5  0.25⎦\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("  B0 = ⎡1  0⎤ = ⎡1  0⎤\n       ⎣0  1⎦   ⎣0  1⎦\n"),
+        "{text}"
+    );
+    assert!(!text.contains("] ["), "{text}");
+    assert!(text.lines().all(|l| l.chars().count() <= 80), "{text}");
+}
