@@ -323,7 +323,7 @@ class Linearization:
 
     Attributes are NumPy arrays: ``M0``, ``C0``, ``K0``, ``B0``, ``A``, ``B``,
     ``eigenvalues`` (complex), ``frequencies`` (rad/s, of the oscillating modes), ``modes``
-    (one column per mode) and ``values`` (the equilibrium's coordinates); ``stable`` and
+    (one row per mode, in the order of ``frequencies``) and ``values`` (the equilibrium's coordinates); ``stable`` and
     ``criterion`` say how stability was decided, ``exact`` holds ``M0 … B0`` as SymPy-readable
     strings, ``data`` everything as ``lagrange linearize --format json`` prints it.
     """

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use lagrange::report::document::Document;
 use lagrange::{parse_assignment, Analysis, Error, MethodName, SimulationOptions};
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::to_py;
@@ -268,11 +268,19 @@ impl PyAnalysis {
             )));
         }
         let rows: Vec<Vec<f64>> = values.rows().into_iter().map(|r| r.to_vec()).collect();
+        // A pool of this call's own, not rayon's global one: in a process forked after the
+        // global pool started (a `ProcessPoolExecutor`'s worker), that pool has no threads
+        // and its work would wait forever.
+        let pool = rayon::ThreadPoolBuilder::new()
+            .build()
+            .map_err(|e| PyRuntimeError::new_err(format!("no threads for the sweep: {e}")))?;
         let (columns, results) = py
             .detach(|| {
-                let columns = self.inner.simulation(&options)?.columns();
-                let results = self.inner.sweep(&options, &names, &rows, &|| {})?;
-                Ok::<_, Error>((columns, results))
+                pool.install(|| {
+                    let columns = self.inner.simulation(&options)?.columns();
+                    let results = self.inner.sweep(&options, &names, &rows, &|| {})?;
+                    Ok::<_, Error>((columns, results))
+                })
             })
             .map_err(|e| to_py(py, &e, &self.file))?;
         let width = columns.len();
