@@ -6,7 +6,11 @@ that is refused — are :class:`ModelError`, whose message is the located diagno
 command line prints and which carries the ``line`` and ``column`` it points at.
 """
 
-from typing import Optional
+from __future__ import annotations
+
+TYPE_CHECKING = False  # typing is not imported at run time: `import lagrange` stays quick
+if TYPE_CHECKING:
+    from typing import Optional
 
 __all__ = ["LagrangeError", "ModelError", "MechanicsError"]
 

@@ -8,15 +8,17 @@ pandas when a table is made, so that ``import lagrange`` stays quick.
 
 from __future__ import annotations
 
-import json
 import os
-from typing import Any, Dict, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native
 
-__all__ = ["Model", "Solution", "Section", "EquationsOfMotion", "Linearization", "Run"]
+TYPE_CHECKING = False  # typing and json are imported when needed: `import lagrange` stays quick
+if TYPE_CHECKING:
+    from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
-Value = Union[float, int, str]
+    Value = Union[float, int, str]
+
+__all__ = ["Model", "Solution", "Section", "EquationsOfMotion", "Linearization", "Run"]
 
 
 class Model:
@@ -43,7 +45,7 @@ class Model:
     def __init__(self, native: Any, values: Sequence[Tuple[str, Value]] = ()) -> None:
         # Private: use Model.from_file / Model.from_text.
         self._native = native
-        self._values: Tuple[Tuple[str, Value], ...] = tuple(values)
+        self._values = tuple(values)
         self._rhs: Any = None
 
     @classmethod
@@ -95,13 +97,13 @@ class Model:
         """Lagrange's equations ``M(q, t) q̈ = f(q, q̇, t)`` as SymPy matrices:
         ``M, f = model.equations_of_motion()``. Coordinates, rates (``theta_d``) and
         parameters are plain SymPy symbols of the same names. Imports SymPy."""
-        data = json.loads(self._native.equations_json())
+        data = _json(self._native.equations_json())
         return EquationsOfMotion._from_json(data, self._names())
 
     def equations_json(self) -> Dict[str, Any]:
         """The equations of motion as ``lagrange eom --format json`` prints them
         (docs/json.md): expressions as SymPy-readable strings."""
-        return json.loads(self._native.equations_json())
+        return _json(self._native.equations_json())
 
     def equilibria(self) -> "Any":
         """The equilibria as a NumPy array, one row per equilibrium, one column per
@@ -115,13 +117,13 @@ class Model:
 
     def equilibria_json(self) -> Dict[str, Any]:
         """The equilibria as ``lagrange equilibria --format json`` prints them."""
-        return json.loads(self._native.equilibria_json())
+        return _json(self._native.equilibria_json())
 
     def linearize(self) -> List["Linearization"]:
         """The linearized dynamics about each equilibrium, in the order of
         :meth:`equilibria`: NumPy arrays ``M0, C0, K0, B0, A, B``, the eigenvalues, natural
         frequencies and modes."""
-        data = json.loads(self._native.linearized_json())
+        data = _json(self._native.linearized_json())
         return [Linearization._from_json(item) for item in data["linearized"]]
 
     def simulate(self, t_end: Optional[float] = None, *, as_frame: Optional[bool] = None, **options: Any):
@@ -180,6 +182,12 @@ class Model:
         return f"<lagrange.Model {self.title!r}: coordinates {', '.join(self.coordinates)}>"
 
 
+def _json(text: str) -> Any:
+    import json
+
+    return json.loads(text)
+
+
 def _rebuild(text: str, file: str, values: Sequence[Tuple[str, Value]]) -> Model:
     model = Model(_native.load_text(text))
     return model.with_values(**dict(values)) if values else model
@@ -195,15 +203,19 @@ def _want_frame(as_frame: Optional[bool]) -> bool:
     return True
 
 
-class Section(NamedTuple):
-    """One section of a :class:`Solution`."""
+class Section:
+    """One section of a :class:`Solution`: ``title``, ``level`` (2 for a section, 3 for a
+    subsection) and ``markdown`` (MyST, math in ``$…$`` and ``$$…$$``)."""
 
-    title: str
-    """Its heading."""
-    level: int
-    """2 for a section, 3 for a subsection."""
-    markdown: str
-    """Its Markdown (MyST), math in ``$…$`` and ``$$…$$``."""
+    __slots__ = ("title", "level", "markdown")
+
+    def __init__(self, title: str, level: int, markdown: str) -> None:
+        self.title = title
+        self.level = level
+        self.markdown = markdown
+
+    def __repr__(self) -> str:
+        return f"<lagrange.Section {self.title!r}>"
 
     def _repr_markdown_(self) -> str:
         return self.markdown
@@ -234,7 +246,7 @@ class Solution:
         """A standalone LaTeX document (``pdflatex`` compiles it)."""
         self.text = text
         """The solution as the terminal shows it."""
-        self.document: Dict[str, Any] = json.loads(document)
+        self.document: Dict[str, Any] = _json(document)
         """The structured document, as under ``report`` in ``lagrange solve --format json``."""
         self.sections = [Section(t, lvl, _strip_title(md)) for t, lvl, md in sections]
         """The sections, in order."""

@@ -15,13 +15,15 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
-
 from ._model import Model, _want_frame
 
-__all__ = ["sweep", "Table"]
+TYPE_CHECKING = False  # typing is not imported at run time: `import lagrange` stays quick
+if TYPE_CHECKING:
+    from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-Grid = Union[Mapping[str, Sequence[float]], Sequence[Mapping[str, float]]]
+    Grid = Union[Mapping[str, Sequence[float]], Sequence[Mapping[str, float]]]
+
+__all__ = ["sweep", "Table"]
 
 
 class Table(dict):
@@ -78,7 +80,7 @@ def sweep(
 
 def _plan(grid: Grid) -> Tuple[List[str], List[List[float]]]:
     """The names and one row of values per run."""
-    if isinstance(grid, Mapping):
+    if hasattr(grid, "keys"):  # a mapping of names to values
         names = list(grid)
         axes = [list(_as_values(grid[name])) for name in names]
         return names, [list(row) for row in itertools.product(*axes)]
