@@ -85,7 +85,7 @@ class Model:
 
     @property
     def values(self) -> Dict[str, float]:
-        """Every named value after the sets: parameters, inputs, initial values."""
+        """The parameters and inputs by name, after the sets (initial values: :meth:`initial_state`)."""
         return dict(self._native.values())
 
     def solve(self) -> "Solution":

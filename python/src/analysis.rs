@@ -119,7 +119,7 @@ impl PyAnalysis {
         self.inner.system().coordinates().to_vec()
     }
 
-    /// Every named value after the sets: parameters, inputs, initial values.
+    /// The parameters and inputs by name, after the sets.
     fn values(&self, py: Python<'_>) -> PyResult<Vec<(String, f64)>> {
         self.inner.values().map_err(|e| to_py(py, &e, &self.file))
     }
