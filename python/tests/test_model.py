@@ -103,3 +103,22 @@ def test_the_solution_is_the_command_lines(seed_7_1, cli):
     markdown = subprocess.run([cli, "solve", str(SEED_7_1), "--format", "md"],
                               check=True, capture_output=True, text=True).stdout
     assert seed_7_1.solve().markdown.strip() == markdown.strip()
+
+
+def test_sympy_and_numpy_are_imported_only_when_asked():
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, lagrange\n"
+        "heavy = lambda: sorted(m for m in ('numpy', 'sympy', 'pandas') if m in sys.modules)\n"
+        "print(heavy())\n"
+        f"model = lagrange.Model.from_file({str(SEED_7_1)!r}); model.solve()\n"
+        "print(heavy())\n"
+        "model.equations_of_motion()\n"
+        "print(heavy())\n"
+    )
+    lines = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                           text=True).stdout.split("\n")
+    assert lines[:2] == ["[]", "[]"]
+    assert "'sympy'" in lines[2]
