@@ -3,10 +3,10 @@
 //! the documented surface (docs/python.md); this module hands it plain values: strings,
 //! JSON text, NumPy arrays.
 //!
-//! - [`analysis::PyAnalysis`] (`Analysis` in Python): a model read from a file or text, its
+//! - `analysis::PyAnalysis` (`Analysis` in Python): a model read from a file or text, its
 //!   values set, and every result of `lagrange::Analysis` (solution, equations as JSON,
 //!   equilibria, linearization, simulation, a sweep on all cores).
-//! - [`rhs::Rhs`]: the compiled right-hand side `(t, (q, q̇)) → (q̇, q̈)` for SciPy's
+//! - `rhs::Rhs`: the compiled right-hand side `(t, (q, q̇)) → (q̇, q̈)` for SciPy's
 //!   `solve_ivp`, one call at a time or many states at once.
 //!
 //! Errors become the Python exceptions of `lagrange._errors` (`ModelError` for the user's
