@@ -189,7 +189,7 @@ def _json(text: str) -> Any:
 
 
 def _rebuild(text: str, file: str, values: Sequence[Tuple[str, Value]]) -> Model:
-    model = Model(_native.load_text(text))
+    model = Model(_native.load_text(text, file))
     return model.with_values(**dict(values)) if values else model
 
 

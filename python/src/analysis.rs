@@ -36,10 +36,11 @@ pub(crate) fn load_file(py: Python<'_>, path: PathBuf) -> PyResult<PyAnalysis> {
         .map_err(|e| to_py(py, &e, &file))
 }
 
-/// Reads, checks and lowers model text.
+/// Reads, checks and lowers model text; errors name it `file` (default `<text>`).
 #[pyfunction]
-pub(crate) fn load_text(py: Python<'_>, text: &str) -> PyResult<PyAnalysis> {
-    let file = "<text>".to_owned();
+#[pyo3(signature = (text, file=None))]
+pub(crate) fn load_text(py: Python<'_>, text: &str, file: Option<String>) -> PyResult<PyAnalysis> {
+    let file = file.unwrap_or_else(|| "<text>".to_owned());
     Analysis::from_text(text)
         .map(|inner| PyAnalysis {
             inner,

@@ -75,6 +75,9 @@ def test_a_model_pickles_with_its_values(seed_7_1):
     copy = pickle.loads(pickle.dumps(moon))
     assert copy.values == moon.values
     assert copy.coordinates == moon.coordinates
+    with pytest.raises(lagrange.ModelError) as caught:
+        copy.with_values(gg=1.0)
+    assert str(caught.value).startswith(str(SEED_7_1))  # errors still name the file
 
 
 def test_solve_displays_the_course_solution(seed_7_1):
