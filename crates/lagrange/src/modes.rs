@@ -5,8 +5,8 @@
 
 use cas::Expr;
 use draw::{Item, Scene, P3};
-use mechanics::equilibria::{environment, Method, RestEquations, Values};
-use mechanics::linearize::LinearizeError;
+use mechanics::equilibria::{Method, RestEquations, Values};
+use mechanics::linearize::{evaluate_matrix, LinearizeError};
 use numeric::eigen::EigenError;
 
 use crate::analysis::Analysis;
@@ -275,8 +275,8 @@ fn reduced(analysis: &Analysis, rest: &RestEquations, q0: &[f64]) -> Result<Redu
         .map(|row| row.iter().map(|j| -*j).collect())
         .collect();
     let (Some(m0), Some(k0)) = (
-        evaluate(equations.mass_matrix(), rest, q0, &values),
-        evaluate(&stiffness, rest, q0, &values),
+        evaluate_matrix(equations.mass_matrix(), rest, q0, &values).ok(),
+        evaluate_matrix(&stiffness, rest, q0, &values).ok(),
     ) else {
         return Ok(Reduced::Undecided(
             "the mass matrix is singular there and the linearization cannot be evaluated"
@@ -372,31 +372,6 @@ fn pole_clause(names: &[String], null: &[usize], modes: &[Vec<f64>]) -> String {
         format!("a combination of {}", moving.join(", "))
     };
     format!(", a pole of the coordinates: {what} moves nothing")
-}
-
-/// The entries of `m` at `q = q0` with the model's values; `None` when one is not a finite
-/// number.
-fn evaluate(
-    m: &[Vec<Expr>],
-    rest: &RestEquations,
-    q0: &[f64],
-    values: &Values,
-) -> Option<Vec<Vec<f64>>> {
-    let base = environment(values);
-    let env = |s: cas::Symbol| {
-        rest.symbols
-            .iter()
-            .position(|q| *q == s)
-            .map(|i| q0[i])
-            .or_else(|| base(s))
-    };
-    m.iter()
-        .map(|row| {
-            row.iter()
-                .map(|e| e.eval(&env).ok().filter(|v| v.is_finite()))
-                .collect()
-        })
-        .collect()
 }
 
 /// The positions an item is drawn at that move with the system.

@@ -354,7 +354,11 @@ pub enum LinearizeError {
     Eigen(#[from] numeric::eigen::EigenError),
 }
 
-fn evaluate(
+/// The entries of `m` at the coordinates `q0` (in the order of `rest.symbols`) with `values`.
+///
+/// # Errors
+/// [`LinearizeError::Evaluation`] when an entry does not evaluate to a finite number.
+pub fn evaluate_matrix(
     m: &[Vec<Expr>],
     rest: &RestEquations,
     q0: &[f64],
@@ -468,11 +472,11 @@ pub fn linearize_at(
             rest.symbols.len()
         )));
     }
-    let m0 = evaluate(&model.mass, rest, q0, values)?;
-    let c0 = evaluate(&model.damping, rest, q0, values)?;
-    let k0 = evaluate(&model.stiffness, rest, q0, values)?;
-    let b0 = evaluate(&model.input, rest, q0, values)?;
-    let hessian = evaluate(&model.hessian, rest, q0, values)?;
+    let m0 = evaluate_matrix(&model.mass, rest, q0, values)?;
+    let c0 = evaluate_matrix(&model.damping, rest, q0, values)?;
+    let k0 = evaluate_matrix(&model.stiffness, rest, q0, values)?;
+    let b0 = evaluate_matrix(&model.input, rest, q0, values)?;
+    let hessian = evaluate_matrix(&model.hessian, rest, q0, values)?;
     let exact = exact.map(|x| {
         [
             substitute(&model.mass, rest, x),
@@ -759,7 +763,7 @@ fn decide_steady(
     values: &Values,
     eigenvalues: &[(f64, f64)],
 ) -> Result<Decision, LinearizeError> {
-    let momentum = evaluate(
+    let momentum = evaluate_matrix(
         std::slice::from_ref(&routh.momentum_values),
         rest,
         q0,
@@ -771,7 +775,7 @@ fn decide_steady(
             with_p.insert(sym.name().to_string(), *v);
         }
     }
-    let full = evaluate(&routh.hessian, rest, q0, &with_p)?;
+    let full = evaluate_matrix(&routh.hessian, rest, q0, &with_p)?;
     let bound: Vec<usize> = (0..q0.len()).filter(|i| !rest.free[*i]).collect();
     let h: Vec<Vec<f64>> = bound
         .iter()
