@@ -5,6 +5,7 @@
 # _static, so a page loads nothing from the network.
 #
 # Usage: docs/book/build.sh [OUT]   (OUT: where the HTML goes; default target/book)
+# NOTEBOOKS: a directory of executed notebooks to show (default docs/notebooks, unexecuted).
 # Environment: BOOK_VENV (default target/book-venv) to reuse a venv; PYTHON (default python3).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -30,6 +31,13 @@ for page in "$root"/examples/seed/*.md; do
     cp "$root"/examples/seed/"$stem".svg "$root"/examples/seed/"$stem"-motion.svg "$book/" 2>/dev/null || true
     cp "$root"/examples/seed/"$stem".html "$book/" 2>/dev/null || true
 done
+# The notebooks of the exercises, as CI ran them when it did (NOTEBOOKS, written by
+# python/tests/test_notebook.py), else as committed (code without outputs).
+mkdir -p "$book/notebooks"
+notebooks=${NOTEBOOKS:-$root/docs/notebooks}
+[ -d "$notebooks" ] && [ -n "$(ls "$notebooks"/*.ipynb 2>/dev/null)" ] || notebooks=$root/docs/notebooks
+cp "$notebooks"/*.ipynb "$book/notebooks/"
+cp "$root/docs/book/python.md" "$book/"
 mkdir -p "$book/_mathjax"
 cp -r "$mathjax" "$book/_mathjax/mathjax"
 

@@ -6,6 +6,10 @@ Every exercise page must load with no error and no request to the network (MathJ
 the book's own copy), MathJax must typeset every formula with no error (`mjx-merror`), no
 display may be wider than the text column (it would be clipped or scroll), and no figure wider
 than the column either. The window is 1000 px wide, a laptop's browser beside nothing else.
+
+The notebook pages (the same exercises worked in Python, `notebooks/7.*.html`) must load with
+no error, typeset with no MathJax error, and show the outputs of a run (the book is built from
+the notebooks as CI executed them); their SymPy outputs may scroll sideways, as in Jupyter.
 """
 
 import glob
@@ -33,7 +37,8 @@ MEASURE = r"""
   const figures = [...document.querySelectorAll('article img, main img')].map(img => ({
     src: img.getAttribute('src'), width: img.getBoundingClientRect().width,
     natural: img.naturalWidth, loaded: img.complete && img.naturalWidth > 0}));
-  return {column, displays, errors, figures, count: displays.length};
+  const outputs = document.querySelectorAll('.cell_output').length;
+  return {column, displays, errors, figures, count: displays.length, outputs};
 })()
 """
 
@@ -89,6 +94,24 @@ def main():
             bad = [f"{f['src']} ({f['width']:.0f} px{'' if f['loaded'] else ', not loaded'})"
                    for f in measured["figures"] if not f["loaded"] or f["width"] > column + 0.5]
             report(not bad, f"{name}: every figure loads and fits the column", "; ".join(bad))
+        notebooks = sorted(glob.glob(os.path.join(book, "notebooks", "7.*.html")))
+        report(len(notebooks) == 4, "the book has the four notebooks", ", ".join(map(os.path.basename, notebooks)))
+        for page in notebooks:
+            name = "notebooks/" + os.path.basename(page)
+            browser.open(page, settle=0.5)
+            measured = browser.evaluate(MEASURE)
+            problem = measured.get("problem") if isinstance(measured, dict) else "nothing measured"
+            errors = [e for e in browser.errors if not any(k in e for k in KNOWN)]
+            errors += [problem] if problem else []
+            report(not errors, f"{name} loads offline without errors", "; ".join(errors))
+            if problem:
+                continue
+            report(not measured["errors"], f"{name}: MathJax typesets every formula ({measured['count']} displays)",
+                   "; ".join(measured["errors"][:5]))
+            report(measured["outputs"] >= 5, f"{name}: shows the outputs of a run ({measured['outputs']} outputs)")
+            # The displayed solution is Markdown with `$$` math: rendered as MyST it gives a
+            # dozen displays or more; as plain Markdown none of them (its TeX is mangled).
+            report(measured["count"] >= 10, f"{name}: the solution's mathematics is typeset ({measured['count']} displays)")
     except (cdp.BrowserError, KeyError, TypeError) as e:
         report(False, "the book's pages", f"{type(e).__name__}: {e}")
     finally:
