@@ -13,7 +13,9 @@ out=$(realpath -m "${1:-$root/target/book}")
 venv=$(realpath -m "${BOOK_VENV:-$root/target/book-venv}")
 python=${PYTHON:-python3}
 
-if [ ! -x "$venv/bin/jupyter-book" ] || [ ! -d "$("$venv/bin/python" -c 'import mathjax, os; print(os.path.dirname(mathjax.__file__))' 2>/dev/null)/static/mathjax/es5" ]; then
+# A venv that does not run (moved or copied elsewhere: its scripts name the old path) is made anew.
+if ! "$venv/bin/jupyter-book" --version >/dev/null 2>&1 || [ ! -d "$("$venv/bin/python" -c 'import mathjax, os; print(os.path.dirname(mathjax.__file__))' 2>/dev/null)/static/mathjax/es5" ]; then
+    rm -rf "$venv"
     "$python" -m venv "$venv"
     "$venv/bin/pip" install -q --upgrade pip
     "$venv/bin/pip" install -q "jupyter-book<2" "django-static-mathjax==3.2.2.1"
