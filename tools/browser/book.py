@@ -74,8 +74,8 @@ def main():
         return 1
     browser = cdp.Browser(executable, width=1000, height=800)
     try:
-        for page in pages:
-            name = os.path.basename(page)
+        def typeset(page, name):
+            """Opens a page; the measures when it loads and MathJax typesets it, else None."""
             browser.open(page, settle=0.5)
             measured = browser.evaluate(MEASURE)
             problem = measured.get("problem") if isinstance(measured, dict) else "nothing measured"
@@ -83,9 +83,16 @@ def main():
             errors += [problem] if problem else []
             report(not errors, f"{name} loads offline without errors", "; ".join(errors))
             if problem:
-                continue
+                return None
             report(not measured["errors"], f"{name}: MathJax typesets every formula ({measured['count']} displays)",
                    "; ".join(measured["errors"][:5]))
+            return measured
+
+        for page in pages:
+            name = os.path.basename(page)
+            measured = typeset(page, name)
+            if measured is None:
+                continue
             column = measured["column"]
             wide = [f"display {d['i']} is {d['width']:.0f} px: {d['tex']!r}"
                     for d in measured["displays"] if d["width"] > column + 0.5]
@@ -98,16 +105,9 @@ def main():
         report(len(notebooks) == 4, "the book has the four notebooks", ", ".join(map(os.path.basename, notebooks)))
         for page in notebooks:
             name = "notebooks/" + os.path.basename(page)
-            browser.open(page, settle=0.5)
-            measured = browser.evaluate(MEASURE)
-            problem = measured.get("problem") if isinstance(measured, dict) else "nothing measured"
-            errors = [e for e in browser.errors if not any(k in e for k in KNOWN)]
-            errors += [problem] if problem else []
-            report(not errors, f"{name} loads offline without errors", "; ".join(errors))
-            if problem:
+            measured = typeset(page, name)
+            if measured is None:
                 continue
-            report(not measured["errors"], f"{name}: MathJax typesets every formula ({measured['count']} displays)",
-                   "; ".join(measured["errors"][:5]))
             report(measured["outputs"] >= 5, f"{name}: shows the outputs of a run ({measured['outputs']} outputs)")
             # The displayed solution is Markdown with `$$` math: rendered as MyST it gives a
             # dozen displays or more; as plain Markdown none of them (its TeX is mangled).
