@@ -2,7 +2,8 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand};
+use lagrange::{Dialect, ReportFormat, ResultFormat};
 
 /// lagrange — analytical mechanics from a short model file: kinematics, the Lagrangian, the
 /// equations of motion, and the tools of the symbolic core.
@@ -43,8 +44,8 @@ pub enum Command {
         #[command(flatten)]
         input: ModelInput,
         /// Output: text for people, or JSON (schema in docs/json.md).
-        #[arg(long, value_enum, default_value_t = EomFormat::Text)]
-        format: EomFormat,
+        #[arg(long, value_enum, default_value_t = ResultFormat::Text)]
+        format: ResultFormat,
     },
     /// Print the constraint reactions a model asks for (`reactions …`, `reaction NAME: …`),
     /// by Lagrange's equations of the 1st kind and by Newton–Euler, and whether they agree.
@@ -52,8 +53,8 @@ pub enum Command {
         #[command(flatten)]
         input: ModelInput,
         /// Output: text for people, or JSON (schema in docs/json.md).
-        #[arg(long, value_enum, default_value_t = EomFormat::Text)]
-        format: EomFormat,
+        #[arg(long, value_enum, default_value_t = ResultFormat::Text)]
+        format: ResultFormat,
     },
     /// Find all equilibria (rest states with inputs held constant), exactly where possible,
     /// and decide their stability.
@@ -114,57 +115,12 @@ pub enum Command {
 #[derive(Args, Debug, Clone)]
 pub struct ExpressionOptions {
     /// Output dialect.
-    #[arg(long, value_enum, default_value_t = Format::Unicode)]
-    pub format: Format,
+    #[arg(long, value_enum, default_value_t = Dialect::Unicode)]
+    pub format: Dialect,
     /// Names that are functions of time (coordinates), comma-separated; names with a
     /// `_d`/`_dd` suffix are recognised without this.
     #[arg(long, value_delimiter = ',')]
     pub coords: Vec<String>,
-}
-
-/// How expressions are printed.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// For terminals: θ̇, ẍ, ℓ, compact form.
-    Unicode,
-    /// LaTeX in the course's notation.
-    Latex,
-    /// SymPy syntax, exactly the normal form (reads back with `lagrange simplify`).
-    Sympy,
-}
-
-/// How `lagrange eom` prints.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum EomFormat {
-    /// Unicode equations, the way the course writes them.
-    Text,
-    /// JSON, `"schema": 1` (docs/json.md).
-    Json,
-}
-
-/// How `lagrange solve` writes its report.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ReportFormat {
-    /// Unicode for the terminal, 80 columns.
-    Text,
-    /// MyST Markdown (math in `$$…$$`), for a Jupyter Book.
-    Md,
-    /// A standalone LaTeX document.
-    Tex,
-    /// Everything as JSON (docs/json.md).
-    Json,
-}
-
-impl ReportFormat {
-    /// The file extension of a report written with `--out`.
-    pub fn extension(self) -> &'static str {
-        match self {
-            ReportFormat::Text => "txt",
-            ReportFormat::Md => "md",
-            ReportFormat::Tex => "tex",
-            ReportFormat::Json => "json",
-        }
-    }
 }
 
 /// A model file and values for this run: what every command that reads a model takes.
@@ -183,8 +139,8 @@ pub struct ModelInput {
 #[derive(Args, Debug, Clone)]
 pub struct EquilibriumOptions {
     /// Output: text for people, or JSON (schema in docs/json.md).
-    #[arg(long, value_enum, default_value_t = EomFormat::Text)]
-    pub format: EomFormat,
+    #[arg(long, value_enum, default_value_t = ResultFormat::Text)]
+    pub format: ResultFormat,
     /// The search range of a non-angle coordinate, e.g. `--range x=-2..2` (default −10..10;
     /// angles always span one turn).
     #[arg(long = "range", value_name = "NAME=A..B")]

@@ -12,8 +12,8 @@ use crate::exit::{check_output, emit, Exit, Failure};
 /// The flags of `lagrange animate`.
 #[derive(Args, Debug)]
 pub struct AnimateArgs {
-    /// The model file (`.lag`).
-    pub model: PathBuf,
+    #[command(flatten)]
+    pub input: crate::args::ModelInput,
     /// End time (default: the model's `simulate to T`; with `--mode`, three periods).
     #[arg(long)]
     pub t_end: Option<f64>,
@@ -27,9 +27,6 @@ pub struct AnimateArgs {
     /// Draw the path of this point (repeatable).
     #[arg(long, value_name = "POINT")]
     pub trace: Vec<String>,
-    /// Override a parameter, an input or an initial value: `--set theta=1` (repeatable).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
-    pub set: Vec<String>,
     /// Write the animation to this `.html` file instead of printing it.
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -37,7 +34,7 @@ pub struct AnimateArgs {
 
 /// Simulates (or follows a mode), draws every frame, and prints or writes the page.
 pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
-    let path = args.model.as_path();
+    let path = args.input.model.as_path();
     if let Some(out) = &args.out {
         FileFormat::of(out, Output::Animation).map_err(|e| Failure::flag("--out", e))?;
         check_output(out, path)?;
@@ -48,7 +45,7 @@ pub fn run(args: &AnimateArgs) -> Result<Exit, Failure> {
             "--fps {fps}: give a positive number"
         )));
     }
-    let analysis = super::load(path, &args.set)?;
+    let analysis = super::load(path, &args.input.set)?;
     let html = match args.mode {
         None => analysis.animation(args.t_end, args.fps, &args.trace),
         Some(k) => analysis.mode_animation(k, args.t_end, args.fps, &args.trace),

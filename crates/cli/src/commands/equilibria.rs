@@ -3,11 +3,11 @@
 
 use std::path::Path;
 
-use lagrange::{Analysis, Search};
+use lagrange::{Analysis, Linearized, Search, Written};
 
-use super::{each, eom::json};
-use crate::args::{EomFormat, EquilibriumOptions, ModelInput};
-use crate::exit::{println, Exit, Failure};
+use super::each;
+use crate::args::{EquilibriumOptions, ModelInput};
+use crate::exit::{print, Exit, Failure};
 
 /// `lagrange equilibria` (`initial` is `None`) or `lagrange linearize`.
 pub fn run(
@@ -22,7 +22,6 @@ pub fn run(
         steady: each(&options.steady, "--steady", |s| analysis.read_number(s))?,
         ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
     };
-    let as_json = options.format == EomFormat::Json;
     if let Some(sweep) = &options.sweep {
         return run_sweep(path, &analysis, &search, sweep, options);
     }
@@ -39,22 +38,23 @@ pub fn run(
         found.check_index(i).map_err(refused)?;
     }
     let text = match initial {
-        None if as_json => json(&found.to_json()),
-        None => found.to_text(),
+        None => found.written(options.format),
         Some(initial) => {
             let deviations = (!initial.is_empty())
                 .then(|| analysis.read_deviations(initial, &found.rest.coordinates))
                 .transpose()
                 .map_err(|e| Failure::input(format!("--initial {e}")))?;
             let deviations = deviations.as_ref().map(|(q, v)| (&q[..], &v[..]));
-            if as_json {
-                json(&found.linearized_json(only, deviations))
-            } else {
-                found.linearized_text(only, deviations)
+            let equilibria = &found;
+            Linearized {
+                equilibria,
+                only,
+                deviations,
             }
+            .written(options.format)
         }
     };
-    println(&text)?;
+    print(text)?;
     Ok(Exit::Success)
 }
 
@@ -75,10 +75,6 @@ fn run_sweep(
         table.plot(plot).map_err(|e| Failure::of(e.into(), path))?;
         eprintln!("wrote {}", plot.display());
     }
-    println(&if options.format == EomFormat::Json {
-        json(&table.to_json())
-    } else {
-        table.to_text()
-    })?;
+    print(table.written(options.format))?;
     Ok(Exit::Success)
 }

@@ -3,21 +3,19 @@
 
 use std::path::Path;
 
-use crate::args::EomFormat;
-use crate::exit::{print, println, Exit, Failure};
+use lagrange::{ResultFormat, Written};
+
+use crate::exit::{print, Exit, Failure};
 
 /// Computes and prints the reactions of a model file.
-pub fn run(path: &Path, format: EomFormat, set: &[String]) -> Result<Exit, Failure> {
+pub fn run(path: &Path, format: ResultFormat, set: &[String]) -> Result<Exit, Failure> {
     let analysis = super::load(path, set)?;
     let Some(computed) = analysis.reactions().map_err(|e| Failure::of(e, path))? else {
         return Err(Failure::input(
             "the model asks for no reaction; add `reactions CONSTRAINT` or `reaction NAME: hinge P on BODY`",
         ));
     };
-    match format {
-        EomFormat::Json => println(&super::eom::json(&computed.to_json()))?,
-        EomFormat::Text => print(computed.to_text())?,
-    }
+    print(computed.written(format))?;
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
     Ok(if computed.disagree() {
         Exit::Internal

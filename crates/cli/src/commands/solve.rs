@@ -3,10 +3,8 @@
 
 use std::path::Path;
 
-use lagrange::Figures;
-
-use crate::args::ReportFormat;
 use crate::exit::{emit, Exit, Failure};
+use lagrange::{Figures, ReportFormat};
 
 /// `lagrange solve MODEL [--format …] [--out DIR]`.
 pub fn run(
@@ -30,18 +28,8 @@ pub fn run(
     let solution = analysis
         .solution(figures.as_ref())
         .map_err(|e| Failure::of(e, path))?;
-    let document = &solution.document;
-    let text = match format {
-        ReportFormat::Text => document.to_text(),
-        ReportFormat::Md => document.to_markdown(),
-        ReportFormat::Tex => document.to_latex(),
-        ReportFormat::Json => {
-            let value = analysis
-                .solution_json(&solution)
-                .map_err(|e| Failure::of(e, path))?;
-            super::eom::json(&value) + "\n"
-        }
-    };
+    let text = analysis.solution_written(&solution, format);
+    let text = text.map_err(|e| Failure::of(e, path))?;
     let file = figures.map(|f| f.report_file(format.extension()));
     emit(file.as_deref(), text)?;
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
