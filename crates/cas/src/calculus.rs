@@ -63,47 +63,16 @@ impl Deriver {
     }
 
     fn poly(&mut self, p: &Poly) -> Rf {
-        let mut buckets: FxHashMap<AtomId, Vec<(Monomial, Number)>> = FxHashMap::default();
-        let mut order: Vec<AtomId> = Vec::new();
+        let mut buckets = Buckets::default();
         for (m, c) in &p.terms {
             for (i, &(a, e)) in m.iter().enumerate() {
-                if self.atom_is_constant(a) {
-                    continue;
+                if !self.atom_is_constant(a) {
+                    let (reduced, coefficient) = lowered(m, i, e, c);
+                    buckets.push(a, reduced, coefficient);
                 }
-                let mut reduced = m.clone();
-                if e == 1 {
-                    reduced.remove(i);
-                } else {
-                    reduced[i].1 = e - 1;
-                }
-                let coefficient = c.mul(&Number::int(e as i64));
-                buckets
-                    .entry(a)
-                    .or_insert_with(|| {
-                        order.push(a);
-                        Vec::new()
-                    })
-                    .push((reduced, coefficient));
             }
         }
-        // Σ_a ∂P/∂a · da: polynomial parts are gathered and sort-merged once (adding them one
-        // by one would copy the growing sum for every atom); fractions are added after.
-        let mut terms = Vec::new();
-        let mut fractions = Rf::zero();
-        for a in order {
-            // Removing one factor `a` from distinct monomials leaves distinct monomials, so the
-            // bucket is a valid (unsorted) polynomial; the final merge sorts.
-            let partial = Poly {
-                terms: buckets.remove(&a).unwrap_or_default(),
-            };
-            let da = self.atom(a);
-            if da.den.is_one() {
-                terms.extend(partial.mul(&da.num).terms);
-            } else {
-                fractions = fractions.add(&Rf::from_poly(Poly::from_terms(partial.terms)).mul(&da));
-            }
-        }
-        Rf::from_poly(Poly::from_terms(terms)).add(&fractions)
+        buckets.assemble(|a| self.atom(a))
     }
 
     fn atom_is_constant(&mut self, a: AtomId) -> bool {
@@ -203,6 +172,99 @@ impl Deriver {
         };
         self.normalizer.rf(d)
     }
+}
+
+/// The monomial `m` with its `i`-th factor `a^e` lowered to `a^(e−1)`, and `e·c`: the
+/// term's partial derivative with respect to the atom `a`, before `da`.
+fn lowered(m: &Monomial, i: usize, e: u32, c: &Number) -> (Monomial, Number) {
+    let mut reduced = m.clone();
+    if e == 1 {
+        reduced.remove(i);
+    } else {
+        reduced[i].1 = e - 1;
+    }
+    (reduced, c.mul(&Number::int(i64::from(e))))
+}
+
+/// The terms of `∂P/∂a` for each atom `a` of a polynomial `P`, in the order the atoms are
+/// first met.
+#[derive(Default)]
+struct Buckets {
+    terms: FxHashMap<AtomId, Vec<(Monomial, Number)>>,
+    order: Vec<AtomId>,
+}
+
+impl Buckets {
+    fn push(&mut self, a: AtomId, reduced: Monomial, coefficient: Number) {
+        let order = &mut self.order;
+        self.terms
+            .entry(a)
+            .or_insert_with(|| {
+                order.push(a);
+                Vec::new()
+            })
+            .push((reduced, coefficient));
+    }
+
+    /// `Σ_a ∂P/∂a · da`: polynomial parts are gathered and sort-merged once (adding them one
+    /// by one would copy the growing sum for every atom); fractions are added after.
+    fn assemble(mut self, mut derivative: impl FnMut(AtomId) -> Rf) -> Rf {
+        let mut terms = Vec::new();
+        let mut fractions = Rf::zero();
+        for a in self.order {
+            // Removing one factor `a` from distinct monomials leaves distinct monomials, so the
+            // bucket is a valid (unsorted) polynomial; the final merge sorts.
+            let partial = Poly {
+                terms: self.terms.remove(&a).unwrap_or_default(),
+            };
+            let da = derivative(a);
+            if da.den.is_one() {
+                terms.extend(partial.mul(&da.num).terms);
+            } else {
+                fractions = fractions.add(&Rf::from_poly(Poly::from_terms(partial.terms)).mul(&da));
+            }
+        }
+        Rf::from_poly(Poly::from_terms(terms)).add(&fractions)
+    }
+}
+
+/// `∂r/∂v` for every `v` of `vars`, equal to [`partial_derivative_rf`] for each. A polynomial
+/// is read once for all the variables (each term is handed to the variables its atoms depend
+/// on), not once per variable: the gradient of a Lagrangian with T terms in n coordinates
+/// costs O(T) instead of O(n T).
+pub(crate) fn gradient_rf(r: &Rf, vars: &[Symbol]) -> Vec<Rf> {
+    if !r.den.is_one() {
+        return vars.iter().map(|&v| partial_derivative_rf(r, v)).collect();
+    }
+    let mut derivers: Vec<Deriver> = vars
+        .iter()
+        .map(|&v| Deriver::new(Wrt::Partial(Expr::from_symbol(v))))
+        .collect();
+    // Which variables each atom depends on, decided once per atom.
+    let mut depends: FxHashMap<AtomId, Vec<usize>> = FxHashMap::default();
+    let mut buckets: Vec<Buckets> = vars.iter().map(|_| Buckets::default()).collect();
+    for (m, c) in &r.num.terms {
+        for (i, &(a, e)) in m.iter().enumerate() {
+            let on = depends.entry(a).or_insert_with(|| {
+                let varying = |(k, d): (usize, &mut Deriver)| (!d.atom_is_constant(a)).then_some(k);
+                derivers
+                    .iter_mut()
+                    .enumerate()
+                    .filter_map(varying)
+                    .collect()
+            });
+            if on.is_empty() {
+                continue;
+            }
+            let (reduced, coefficient) = lowered(m, i, e, c);
+            for &k in on.iter() {
+                buckets[k].push(a, reduced.clone(), coefficient.clone());
+            }
+        }
+    }
+    let derivers = derivers.iter_mut();
+    let assemble = |(b, d): (Buckets, &mut Deriver)| b.assemble(|a| d.atom(a));
+    buckets.into_iter().zip(derivers).map(assemble).collect()
 }
 
 /// `∂r/∂var` of a working form.

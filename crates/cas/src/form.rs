@@ -10,7 +10,7 @@
 
 use std::sync::Arc;
 
-use crate::calculus::{partial_derivative_rf, time_derivative_rf};
+use crate::calculus::{gradient_rf, partial_derivative_rf, time_derivative_rf};
 use crate::expr::{Expr, Symbol};
 use crate::normal::{cached_rf, from_shared_rf, to_rf, Rf};
 use crate::ops::affine_split;
@@ -74,6 +74,14 @@ impl NormalForm {
     #[must_use]
     pub fn diff(&self, var: Symbol) -> NormalForm {
         NormalForm::from_rf(partial_derivative_rf(&self.0, var))
+    }
+
+    /// `∂self/∂v` for every `v` of `vars`, each equal to [`NormalForm::diff`]; the terms are
+    /// read once for all the variables.
+    #[must_use]
+    pub fn gradient(&self, vars: &[Symbol]) -> Vec<NormalForm> {
+        let parts = gradient_rf(&self.0, vars);
+        parts.into_iter().map(NormalForm::from_rf).collect()
     }
 
     /// The total time derivative, as [`Expr::dt`].

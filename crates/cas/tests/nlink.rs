@@ -3,6 +3,7 @@
 
 mod common;
 
+use cas::Expr;
 use common::nlink::NLink;
 
 #[test]
@@ -62,5 +63,25 @@ fn nlink_equations_evaluate_like_the_closed_form() {
             (a - b).abs() < 1e-12 * (1.0 + b.abs()),
             "f[{i}]: {a} vs {b}"
         );
+    }
+}
+
+#[test]
+fn a_lagrangians_gradient_is_its_partial_derivatives() {
+    // The gradient reads the terms once for all coordinates (or rates); each part must be the
+    // partial derivative taken on its own, exactly.
+    for n in [2, 5] {
+        let system = NLink::with_prefix(n, "gradient_");
+        let (kinetic, potential) = system.energies();
+        let lagrangian = (kinetic - potential).normal();
+        let symbols_of =
+            |v: &[Expr]| -> Vec<cas::Symbol> { v.iter().filter_map(|e| e.as_symbol()).collect() };
+        for symbols in [symbols_of(&system.angles), symbols_of(&system.rates)] {
+            assert_eq!(symbols.len(), n);
+            let gradient = lagrangian.normal_form().gradient(&symbols);
+            for (part, &s) in gradient.iter().zip(&symbols) {
+                assert_eq!(part.to_expr(), lagrangian.diff(s), "n = {n}: ∂L/∂{s:?}");
+            }
+        }
     }
 }

@@ -156,3 +156,23 @@ proptest! {
         prop_assert_eq!(((a + b) * c / (a + b + 7)).normal(), (c * (b + a) / (7 + a + b)).normal());
     }
 }
+
+proptest! {
+    // Each case takes five derivatives besides the gradient: fewer cases keep CI bounded.
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    #[test]
+    fn a_gradient_is_the_partial_derivatives_one_by_one(e in expression()) {
+        let vars: Vec<Symbol> = [Expr::symbol("x"), Expr::symbol("a"), Expr::coordinate("theta"),
+            Expr::rate("theta", 1), Expr::coordinate("phi")]
+            .iter()
+            .filter_map(|v| v.as_symbol())
+            .collect();
+        let form = e.normal_form();
+        let gradient = form.gradient(&vars);
+        prop_assert_eq!(gradient.len(), vars.len());
+        for (part, &v) in gradient.iter().zip(&vars) {
+            prop_assert_eq!(part.to_expr(), e.diff(v), "d/d{:?} of {:?}", v, e);
+        }
+    }
+}

@@ -599,6 +599,17 @@ struct Rows {
     forcing: Vec<Expr>,
 }
 
+/// `∂f/∂s` for each of `symbols` (zero where there is no symbol), in one reading of `f`.
+fn gradient(f: &NormalForm, symbols: &[Option<Symbol>]) -> Vec<NormalForm> {
+    let present: Vec<Symbol> = symbols.iter().flatten().copied().collect();
+    let mut parts = f.gradient(&present).into_iter();
+    let part = |s: &Option<Symbol>| {
+        s.and_then(|_| parts.next())
+            .unwrap_or_else(NormalForm::zero)
+    };
+    symbols.iter().map(part).collect()
+}
+
 /// `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j`, `M_jk = ∂(E_j − Q_j)/∂q̈_k`, `f = −(E − Q)|_{q̈=0}`,
 /// on working forms: only the results that are kept become trees (building a large tree
 /// costs more than the derivative it comes from).
@@ -610,14 +621,8 @@ fn lagrange_rows(
 ) -> Result<Rows, MechanicsError> {
     let n = coordinates.len();
     let lagrangian_form = lagrangian.normal_form();
-    let partial_form =
-        |s: Option<Symbol>, f: &NormalForm| s.map_or_else(NormalForm::zero, |s| f.diff(s));
-    let momenta: Vec<NormalForm> = (0..n)
-        .map(|j| partial_form(vars.qd_sym[j], &lagrangian_form))
-        .collect();
-    let generalized_gradient: Vec<NormalForm> = (0..n)
-        .map(|j| partial_form(vars.q_sym[j], &lagrangian_form))
-        .collect();
+    let momenta = gradient(&lagrangian_form, &vars.qd_sym);
+    let generalized_gradient = gradient(&lagrangian_form, &vars.q_sym);
     let mut lhs_forms = Vec::with_capacity(n);
     let mut lhs = Vec::with_capacity(n);
     let mut mass_matrix = Vec::with_capacity(n);
