@@ -54,7 +54,8 @@ impl Analysis {
         let equations = self.equations()?;
         let system = self.system();
         let notation = Notation::of(system);
-        let mut document = report::solution::solution_document(&self.title(), system, equations);
+        let mut document =
+            report::solution::solution_document_in(&self.title(), system, equations, &notation);
         if let (Some(section), Some(sentence)) =
             (document.sections.first_mut(), self.inputs_sentence())
         {

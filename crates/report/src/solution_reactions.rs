@@ -2,6 +2,7 @@
 //! Lagrange's equations of the first kind and by Newton–Euler, whether the two agree, and
 //! where a one-sided constraint (a contact, a rope) would be lost.
 
+use cas::Expr;
 use mechanics::{Reaction, ReleaseKind, Unilateral};
 
 use crate::document::{Equation, Math, Notation, Section};
@@ -37,15 +38,34 @@ pub fn reactions_section(
             Some(ReleaseKind::Rope) => "T",
             _ => "N",
         };
-        s.equations(reaction_lines(r, symbol, notation));
+        let (r, definitions) = &named(r, notation);
+        let mut lines = definitions.clone();
+        lines.extend(reaction_lines(r, symbol, notation));
+        s.equations(lines);
         if let Some(c) = &r.unbalanced_couple {
+            let (c, definitions) = named_vector(c, notation);
+            let couple = notation.vector(&c);
+            // A long couple goes in a display of its own, not in the sentence.
+            let (what, display) = if couple.unicode.chars().count() > 60 || !definitions.is_empty()
+            {
+                let label = Math::label(
+                    format!("M_{}", r.name),
+                    format!(r"\vec{{M}}_{{\mathrm{{{}}}}}", latex_name(&r.name)),
+                );
+                let what = format!("{} below", label.unicode);
+                let mut display = definitions;
+                display.push(Equation::new(label, couple));
+                (what, display)
+            } else {
+                (couple.unicode, Vec::new())
+            };
             s.remark(format!(
-                "The motion also needs a couple about this point, {}, which a {kind} does not \
+                "The motion also needs a couple about this point, {what}, which a {kind} does not \
                  transmit: loads the release cannot attribute to these bodies act on them (other \
                  supports built into the coordinates, whose forces R then includes, or generalized \
                  forces such as the seed's C), or the joint transmits a couple (ask for a clamp).",
-                notation.vector(c).unicode
             ));
+            s.equations(display);
         }
         if r.along.is_some() {
             one_sided(
@@ -63,6 +83,44 @@ pub fn reactions_section(
         ));
     }
     s
+}
+
+/// `r` with the long sums its components share named ([`Notation::name_shared`]), and the
+/// definitions of the names it introduces.
+fn named(r: &Reaction, notation: &Notation) -> (Reaction, Vec<Equation>) {
+    let vectors = [&r.force, &r.couple];
+    let mut exprs: Vec<Expr> = vectors
+        .iter()
+        .filter_map(|v| v.as_ref())
+        .flat_map(|v| v.iter().copied())
+        .collect();
+    exprs.extend(r.along.iter().map(|(value, _)| *value));
+    exprs.extend(r.generalized.iter().map(|(_, e)| *e));
+    let named = notation.name_shared(&exprs);
+    let mut out = r.clone();
+    let mut next = named.exprs.into_iter();
+    for v in [&mut out.force, &mut out.couple].into_iter().flatten() {
+        for c in v.iter_mut() {
+            *c = next.next().unwrap_or(*c);
+        }
+    }
+    if let Some((value, _)) = &mut out.along {
+        *value = next.next().unwrap_or(*value);
+    }
+    for (_, e) in &mut out.generalized {
+        *e = next.next().unwrap_or(*e);
+    }
+    (out, named.definitions)
+}
+
+/// A vector with the long sums its components share named, and the new definitions.
+fn named_vector(v: &[Expr; 3], notation: &Notation) -> ([Expr; 3], Vec<Equation>) {
+    let named = notation.name_shared(v);
+    let mut out = *v;
+    for (c, n) in out.iter_mut().zip(named.exprs) {
+        *c = n;
+    }
+    (out, named.definitions)
 }
 
 /// The force, couple, normal force or tension, and generalized reactions of `r`.

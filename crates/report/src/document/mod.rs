@@ -9,7 +9,13 @@
 mod json;
 mod latex;
 mod markdown;
+mod shared;
 mod text;
+
+pub use shared::Named;
+
+use std::cell::RefCell;
+use std::rc::Rc;
 
 use cas::print::{to_latex, to_unicode};
 use cas::Expr;
@@ -25,10 +31,17 @@ const TERMWISE_MAX: usize = 4;
 /// [`cas::print::spread_and_fold`]. The value is never changed. It also names the Lagrangian:
 /// `ℒ` (`\mathcal{L}`) as the course writes it, so that a length `L` reads apart from it;
 /// [`Notation::with_lagrangian`] changes that (docs/solve.md).
+///
+/// A notation also remembers the names it gave to long shared sub-expressions
+/// ([`Notation::name_shared`]); its clones share them, so a name is defined once per document.
 #[derive(Clone, Debug)]
 pub struct Notation {
     names: Vec<(Expr, Expr)>,
     lagrangian: Math,
+    /// The model's own names, which a new name must not take.
+    taken: Vec<String>,
+    /// The names given so far (symbol, definition), shared by the clones.
+    shared: Rc<RefCell<Vec<(Expr, Expr)>>>,
 }
 
 impl Default for Notation {
@@ -36,6 +49,8 @@ impl Default for Notation {
         Notation {
             names: Vec::new(),
             lagrangian: Math::label("ℒ", r"\mathcal{L}"),
+            taken: Vec::new(),
+            shared: Rc::default(),
         }
     }
 }
@@ -49,6 +64,13 @@ impl Notation {
                 .constants()
                 .iter()
                 .map(|(name, value)| (Expr::symbol(name), *value))
+                .collect(),
+            taken: system
+                .parameters()
+                .iter()
+                .map(|(name, _)| name.clone())
+                .chain(system.coordinates().iter().cloned())
+                .chain(system.constants().iter().map(|(name, _)| name.clone()))
                 .collect(),
             ..Notation::default()
         }
@@ -71,6 +93,9 @@ impl Notation {
     /// The expression as people read it in this notation.
     #[must_use]
     pub fn shape(&self, e: Expr) -> Expr {
+        if self.has_shared_name(e) {
+            return cas::print::fold_names(e, &self.names);
+        }
         cas::print::spread_and_fold(e, &self.names)
     }
 
