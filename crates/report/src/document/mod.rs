@@ -9,6 +9,7 @@
 mod json;
 mod latex;
 mod markdown;
+mod prose;
 mod shared;
 mod text;
 
@@ -451,17 +452,45 @@ mod tests {
         let md = d.to_markdown();
         assert!(md.contains("## Kinematics"));
         assert!(md.contains("$$\n\\begin{aligned}\n\\vec{r}_P &= "));
-        assert!(md.contains("```{note}\nθ = 0 is stable.\n```"));
+        assert!(md.contains("```{note}\n$\\theta = 0$ is stable.\n```"));
         assert!(md.contains("| $0$ | yes |"));
         let tex = d.to_latex();
         assert!(tex.starts_with("\\documentclass"));
         assert!(tex.ends_with("\\end{document}\n"));
         assert!(tex.contains("100\\% on the rod\\_1 \\& \\#2."));
-        assert!(tex.contains("\\textit{Obs.} $\\theta$ = 0 is stable."));
+        assert!(tex.contains("\\textit{Obs.} $\\theta = 0$ is stable."));
         assert_eq!(
             tex.matches("\\begin{align*}").count(),
             tex.matches("\\end{align*}").count()
         );
+    }
+
+    #[test]
+    fn prose_math_is_math_in_markdown_and_latex() {
+        let mut s = Section::new("Notes", 2);
+        s.paragraph("The cart of mass m_A carries Q_θ = C and ω² < 2 a g (`mesh`).");
+        s.blocks
+            .push(Block::List(vec!["The bob m_B, at r_B.".into()]));
+        s.remark("θ̇ stays small.");
+        let d = Document {
+            title: "t".into(),
+            sections: vec![s],
+        };
+        let md = d.to_markdown();
+        let tex = d.to_latex();
+        for out in [&md, &tex] {
+            assert!(
+                out.contains("mass $m_A$ carries $Q_{\\theta} = C$ and $\\omega^2 < 2 a g$"),
+                "{out}"
+            );
+            assert!(out.contains("The bob $m_B$, at $r_B$."), "{out}");
+            assert!(out.contains("$\\dot{\\theta}$ stays small."), "{out}");
+            assert!(!out.contains("m\\_A") && !out.contains('θ'), "{out}");
+        }
+        assert!(md.contains("(`mesh`)."), "{md}");
+        assert!(tex.contains("(\\texttt{mesh})."), "{tex}");
+        // The terminal keeps the Unicode.
+        assert!(d.to_text().contains("mass m_A carries Q_θ = C"));
     }
 
     #[test]
