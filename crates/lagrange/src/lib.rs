@@ -69,6 +69,7 @@ pub mod expression;
 mod figure;
 mod modes;
 mod output;
+mod projection;
 mod reactions;
 mod runs;
 mod simulate;
@@ -80,6 +81,7 @@ pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Ran
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use output::{FileFormat, Output};
+pub use projection::ProjectedReaction;
 pub use reactions::Reactions;
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{

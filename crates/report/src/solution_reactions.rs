@@ -85,6 +85,81 @@ pub fn reactions_section(
     s
 }
 
+/// A reaction's force projected on the axes the model named (`reaction NAME: … in frame R`,
+/// `… along n`), for [`projection_blocks`].
+#[derive(Clone, Copy, Debug)]
+pub struct Projection<'a> {
+    /// The reaction's name.
+    pub name: &'a str,
+    /// What it is projected on: `frame B`, or the direction as written.
+    pub onto: &'a str,
+    /// Each axis's label (`B.x`, or `along`) and the component.
+    pub components: &'a [(String, Expr)],
+    /// The components at each equilibrium (`None` where they do not evaluate).
+    pub at_equilibria: &'a [Option<Vec<f64>>],
+}
+
+/// Appends to the reactions section a projected reaction: the components `R · e` as the
+/// change of basis gives them, and their values at the equilibria.
+pub fn projection_blocks(s: &mut Section, p: &Projection<'_>, notation: &Notation) {
+    let (unit_u, unit_l) = ("ê", r"\hat{e}");
+    let sentence = if p.onto.starts_with("frame ") {
+        format!(
+            "{} in {}: the inertial components above dotted with the frame's unit vectors.",
+            p.name, p.onto
+        )
+    } else {
+        format!(
+            "{} along {}: the force above dotted with the unit vector {unit_u} along it.",
+            p.name, p.onto
+        )
+    };
+    s.paragraph(sentence);
+    let r_u = format!("R_{}", p.name);
+    let r_l = format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", latex_name(p.name));
+    let labels: Vec<Math> = p
+        .components
+        .iter()
+        .map(|(axis, _)| match axis.split_once('.') {
+            Some((frame, a)) => Math::label(
+                format!("{r_u} · {frame}.{a}"),
+                format!(
+                    r"{r_l} \cdot \hat{{{a}}}_{{\mathrm{{{}}}}}",
+                    latex_name(frame)
+                ),
+            ),
+            None => Math::label(
+                format!("{r_u} · {unit_u}"),
+                format!(r"{r_l} \cdot {unit_l}"),
+            ),
+        })
+        .collect();
+    let exprs: Vec<Expr> = p.components.iter().map(|(_, e)| *e).collect();
+    let named = notation.name_shared(&exprs);
+    let mut lines = named.definitions;
+    for (label, e) in labels.iter().zip(&named.exprs) {
+        lines.push(Equation::new(label.clone(), notation.math(*e)));
+    }
+    s.equations(lines);
+    let values: Vec<String> = p
+        .at_equilibria
+        .iter()
+        .enumerate()
+        .filter_map(|(k, v)| {
+            let v = v.as_ref()?;
+            let listed: Vec<String> = labels
+                .iter()
+                .zip(v)
+                .map(|(l, x)| format!("{} = {x:.4}", l.unicode))
+                .collect();
+            Some(format!("at equilibrium {k}: {}", listed.join(", ")))
+        })
+        .collect();
+    if !values.is_empty() {
+        s.paragraph(format!("At rest: {}.", values.join("; ")));
+    }
+}
+
 /// `r` with the long sums its components share named ([`Notation::name_shared`]), and the
 /// definitions of the names it introduces.
 fn named(r: &Reaction, notation: &Notation) -> (Reaction, Vec<Equation>) {
