@@ -120,35 +120,7 @@ impl Analysis {
 /// square number (`ℓ² sin² θ + ℓ² cos² θ` → `ℓ`).
 fn length(v: &Vector, positive: &dyn Fn(Symbol) -> bool) -> Expr {
     let squared = dot(v, v);
-    positive_root(squared, positive).unwrap_or_else(|| squared.sqrt())
-}
-
-/// The positive square root of a monomial of positive symbols with even powers and a square
-/// number; `None` otherwise.
-fn positive_root(e: Expr, positive: &dyn Fn(Symbol) -> bool) -> Option<Expr> {
-    match e.node() {
-        cas::Node::Number(n) => {
-            let root = |k: &cas::Number| {
-                let k = k.to_i64().filter(|k| *k > 0)?;
-                // The integer root, checked exactly (a float's root may be off by one).
-                let r = (k as f64).sqrt().round() as i64;
-                (r * r == k).then_some(r)
-            };
-            Expr::rational(root(&n.numer())?, root(&n.denom())?)
-        }
-        cas::Node::Pow([base, exponent]) => {
-            let k = exponent.as_number()?.to_i64()?;
-            let s = base.as_symbol()?;
-            (k > 0 && k % 2 == 0 && positive(s)).then(|| base.powi(k / 2))
-        }
-        cas::Node::Symbol(_) => None,
-        cas::Node::Mul(factors) => factors
-            .iter()
-            .map(|f| positive_root(*f, positive))
-            .collect::<Option<Vec<Expr>>>()
-            .map(Expr::mul_all),
-        _ => None,
-    }
+    report::document::positive_root(squared, positive).unwrap_or_else(|| squared.sqrt())
 }
 
 /// `a · b`, in normal form.

@@ -9,10 +9,12 @@
 mod json;
 mod latex;
 mod markdown;
+mod positive;
 mod prose;
 mod shared;
 mod text;
 
+pub use positive::positive_root;
 pub use shared::Named;
 
 use std::cell::RefCell;
@@ -43,6 +45,8 @@ pub struct Notation {
     taken: Vec<String>,
     /// The names given so far (symbol, definition), shared by the clones.
     shared: Rc<RefCell<Vec<(Expr, Expr)>>>,
+    /// The parameters whose values are positive, taken positive in symbolic statements.
+    positive: Vec<String>,
 }
 
 impl Default for Notation {
@@ -52,6 +56,7 @@ impl Default for Notation {
             lagrangian: Math::label("ℒ", r"\mathcal{L}"),
             taken: Vec::new(),
             shared: Rc::default(),
+            positive: Vec::new(),
         }
     }
 }
@@ -73,6 +78,7 @@ impl Notation {
                 .chain(system.coordinates().iter().cloned())
                 .chain(system.constants().iter().map(|(name, _)| name.clone()))
                 .collect(),
+            positive: positive_parameters(system),
             ..Notation::default()
         }
     }
@@ -94,6 +100,7 @@ impl Notation {
     /// The expression as people read it in this notation.
     #[must_use]
     pub fn shape(&self, e: Expr) -> Expr {
+        let e = self.split_roots(e);
         if self.has_shared_name(e) {
             return cas::print::fold_names(e, &self.names);
         }
@@ -152,6 +159,23 @@ impl Notation {
     pub fn vector(&self, components: &[Expr; 3]) -> Math {
         Math::vector(&components.map(|c| self.shape(c)))
     }
+}
+
+/// The parameters whose values (from the earlier parameters) are positive numbers.
+fn positive_parameters(system: &mechanics::System) -> Vec<String> {
+    let mut values: Vec<(String, f64)> = Vec::new();
+    for (name, value) in system.parameters() {
+        let Some(value) = value else { continue };
+        let lookup = |s: cas::Symbol| values.iter().find(|(n, _)| n == s.name()).map(|(_, v)| *v);
+        if let Ok(x) = value.eval(&lookup) {
+            values.push((name.clone(), x));
+        }
+    }
+    values
+        .into_iter()
+        .filter(|(_, v)| *v > 0.0)
+        .map(|(n, _)| n)
+        .collect()
 }
 
 /// A piece of mathematics in the two notations people read.
