@@ -26,7 +26,7 @@ pub fn positive_root(e: Expr, positive: &dyn Fn(Symbol) -> bool) -> Option<Expr>
                 let k = k.to_i64().filter(|k| *k > 0)?;
                 // The integer root, checked exactly (the float's root may be off by one).
                 let r = (k as f64).sqrt().round() as i64;
-                (r * r == k).then_some(r)
+                (r.checked_mul(r) == Some(k)).then_some(r)
             };
             Expr::rational(root(&n.numer())?, root(&n.denom())?)
         }
