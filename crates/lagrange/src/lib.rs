@@ -70,6 +70,7 @@ mod figure;
 mod formats;
 mod modes;
 mod output;
+mod projection;
 mod reactions;
 mod runs;
 mod simulate;
@@ -82,6 +83,7 @@ pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
 pub use output::{FileFormat, Output};
+pub use projection::ProjectedReaction;
 pub use reactions::Reactions;
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{

@@ -54,7 +54,8 @@ impl Analysis {
         let equations = self.equations()?;
         let system = self.system();
         let notation = Notation::of(system);
-        let mut document = report::solution::solution_document(&self.title(), system, equations);
+        let mut document =
+            report::solution::solution_document_in(&self.title(), system, equations, &notation);
         if let (Some(section), Some(sentence)) =
             (document.sections.first_mut(), self.inputs_sentence())
         {
@@ -97,13 +98,13 @@ impl Analysis {
         match reactions {
             Ok(Some(reactions)) => {
                 disagree = reactions.disagree();
-                document
-                    .sections
-                    .push(report::solution_reactions::reactions_section(
-                        &reactions.reactions,
-                        &reactions.unilateral,
-                        &notation,
-                    ));
+                let mut section = report::solution_reactions::reactions_section(
+                    &reactions.reactions,
+                    &reactions.unilateral,
+                    &notation,
+                );
+                self.projection_part(&mut section, &notation);
+                document.sections.push(section);
             }
             Ok(None) => {}
             // The rest of the solution stands; the section says why the reactions are missing.
@@ -115,6 +116,30 @@ impl Analysis {
         }
         document.sections.splice(0..0, self.prose_sections());
         Ok(Solution { document, disagree })
+    }
+
+    /// The reactions projected where the model asks (`… in frame R`, `… along n`), at the
+    /// end of the reactions section; what cannot be projected is said there.
+    fn projection_part(&self, section: &mut Section, notation: &Notation) {
+        match self.projected_reactions() {
+            Ok(projected) => {
+                for p in &projected {
+                    report::solution_reactions::projection_blocks(
+                        section,
+                        &report::solution_reactions::Projection {
+                            name: &p.name,
+                            onto: &p.onto,
+                            components: &p.components,
+                            at_equilibria: &p.at_equilibria,
+                        },
+                        notation,
+                    );
+                }
+            }
+            Err(why) => {
+                section.paragraph(format!("Not projected: {why}."));
+            }
+        }
     }
 
     /// The model's problem statement ("Problem", one paragraph per `problem` statement) and

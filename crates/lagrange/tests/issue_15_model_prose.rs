@@ -48,12 +48,12 @@ fn the_title_problem_and_notes_appear_in_every_format() {
 
     let md = document.to_markdown();
     assert!(
-        md.starts_with("# A pendulum — as the course writes it\n\n## Problem\n\nA bob"),
+        md.starts_with("# A pendulum — as the course writes it\n\n## Problem\n\nA bob of mass m hangs on a rod of length $\\ell$."),
         "{md}"
     );
     assert!(
         md.contains(
-            "## Notes on the model\n\n- The rod is massless & rigid (100%).\n- θ = 0 hangs down.\n"
+            "## Notes on the model\n\n- The rod is massless & rigid (100%).\n- $\\theta = 0$ hangs down.\n"
         ),
         "{md}"
     );
@@ -63,7 +63,7 @@ fn the_title_problem_and_notes_appear_in_every_format() {
         tex.contains("\\title{A pendulum --- as the course writes it}"),
         "{tex}"
     );
-    assert!(tex.contains("\\begin{itemize}\n\\item The rod is massless \\& rigid (100\\%).\n\\item $\\theta$ = 0 hangs down.\n\\end{itemize}"), "{tex}");
+    assert!(tex.contains("\\begin{itemize}\n\\item The rod is massless \\& rigid (100\\%).\n\\item $\\theta = 0$ hangs down.\n\\end{itemize}"), "{tex}");
 
     let json = document.to_json();
     assert_eq!(json["title"], "A pendulum — as the course writes it");

@@ -197,6 +197,17 @@ pub struct ReleaseSpec {
     pub members: Vec<Ident>,
     /// The direction for `contact` and `rope`.
     pub direction: Option<Expr>,
+    /// `in frame R` or `along n`: the components the report projects the force on.
+    pub projection: Option<ReleaseProjection>,
+}
+
+/// Where a reaction's force is projected for the report: `… in frame R`, `… along n`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ReleaseProjection {
+    /// `in frame R`: the components along the frame's axes.
+    Frame(Ident),
+    /// `along n`: the component along `n` (normalised), e.g. `along A - B` for a rod from B to A.
+    Along(Expr),
 }
 
 /// The kinds of constraint.

@@ -44,12 +44,12 @@ pub use model::{
     decimal, Axis, Body, BodyId, Connection, Constant, ConstantId, Constraint, ConstraintId,
     ConstraintKind, Coordinate, CoordinateId, Decimal, Declaration, Expr, ExprKind, Frame, FrameId,
     Function, Inertia, InitialValue, Input, InputId, Load, LoadItem, Model, Name, Output,
-    Parameter, ParameterId, Particle, Point, PointId, Prose, Quantity, ReactionTarget, Release,
-    ReleaseMember, Rotation, Simulation,
+    Parameter, ParameterId, Particle, Point, PointId, Projection, Prose, Quantity, ReactionTarget,
+    Release, ReleaseMember, Rotation, Simulation,
 };
 pub use overrides::OverrideError;
 pub use parser::{parse, MAX_DEPTH};
-pub use reactions::reaction_requests;
+pub use reactions::{reaction_projections, reaction_requests, ReactionProjection};
 pub use render::{render, render_short, RenderOptions};
 pub use span::{line_col, LineCol, LineIndex, Span};
 pub use summary::Summary;

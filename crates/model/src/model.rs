@@ -574,8 +574,20 @@ pub struct Release {
     pub direction: Option<Expr>,
     /// For `rolling ROLL normal n`: the rolling constraint (dropped when released).
     pub constraint: Option<ConstraintId>,
+    /// `in frame R` or `along n`: where the report projects the force.
+    pub projection: Option<Projection>,
     /// The statement.
     pub span: Span,
+}
+
+/// Where a reaction's force is projected for the report (`reaction NAME: … in frame R`,
+/// `… along n`).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Projection {
+    /// The components along a frame's axes.
+    Frame(FrameId),
+    /// The component along a direction (a vector, normalised when projected).
+    Along(Expr),
 }
 
 /// An initial value of a coordinate or of its rate.

@@ -8,7 +8,10 @@ use mechanics::{ReactionRequest, Release as MRelease, ReleaseKind, Vector};
 
 use crate::ast::ReleaseWord;
 use crate::lower::{lower, lower_parts, lower_with, LowerError, Shift};
-use crate::model::{ConstraintId, ConstraintKind, Model, PointId, ReactionTarget, ReleaseMember};
+use crate::model::{
+    Axis, ConstraintId, ConstraintKind, ExprKind, Model, PointId, Projection, ReactionTarget,
+    ReleaseMember,
+};
 
 /// The displacement coordinates of reaction `name`: `name__x`, `name__y`, `name__z` (or
 /// `name__n` along a direction). The double underscore keeps them apart from model names.
@@ -302,6 +305,66 @@ pub fn reaction_requests(model: &Model) -> Result<Vec<ReactionRequest>, LowerErr
         )?));
     }
     Ok(requests)
+}
+
+/// The axes a reaction's force is projected on for the report (`reaction NAME: … in frame R`,
+/// `… along n`): each a label and a unit vector in inertial components.
+#[derive(Clone, Debug)]
+pub struct ReactionProjection {
+    /// The reaction's name.
+    pub name: String,
+    /// What the projection is on, for the report: `frame B`, `A − P`.
+    pub onto: String,
+    /// The axes: a label (`B.x`, or `along`) and the vector in inertial components — a
+    /// frame's unit vectors, or the direction `along` as written (not normalised: its length
+    /// is for the caller, who knows which parameters are positive).
+    pub axes: Vec<(String, Vector)>,
+}
+
+/// The projections the model's `reaction` statements ask for, in their order.
+///
+/// # Errors
+/// A [`LowerError`] when a direction cannot be lowered or is zero.
+pub fn reaction_projections(model: &Model) -> Result<Vec<ReactionProjection>, LowerError> {
+    let mut out = Vec::new();
+    for r in model.releases() {
+        let Some(projection) = &r.projection else {
+            continue;
+        };
+        let (onto, axes) = match projection {
+            Projection::Frame(frame) => {
+                let name = model.frame(*frame).name.name.clone();
+                let mut axes = Vec::new();
+                for (axis, label) in [(Axis::X, "x"), (Axis::Y, "y"), (Axis::Z, "z")] {
+                    let e = crate::model::Expr {
+                        kind: ExprKind::UnitVector {
+                            frame: *frame,
+                            axis,
+                        },
+                        span: r.span,
+                        ty: crate::diagnostic::Type::Vector,
+                    };
+                    axes.push((format!("{name}.{label}"), probe_vector(model, &e)?));
+                }
+                (format!("frame {name}"), axes)
+            }
+            Projection::Along(d) => {
+                let n = probe_vector(model, d)?;
+                let n2 = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).normal();
+                if n2.is_zero() {
+                    return Err(LowerError::ZeroDirection { span: d.span });
+                }
+                let text = model.display(d).to_string();
+                (text, vec![("along".to_string(), n)])
+            }
+        };
+        out.push(ReactionProjection {
+            name: r.name.name.clone(),
+            onto,
+            axes,
+        });
+    }
+    Ok(out)
 }
 
 /// A vector expression lowered, through a probe force whose vector it is.

@@ -17,23 +17,39 @@ const STEP_BY_STEP_MAX: usize = 6;
 
 /// The sections of the solution that the equations of motion answer.
 #[must_use]
-pub fn equations_of_motion_sections(system: &System, equations: &Equations) -> Vec<Section> {
-    let notation = Notation::of(system);
+pub fn equations_of_motion_sections(
+    system: &System,
+    equations: &Equations,
+    notation: &Notation,
+) -> Vec<Section> {
     vec![
-        system_section(system, equations, &notation),
-        kinematics_section(system, &notation),
-        lagrangian_section(equations, &notation),
-        lagrange_section(equations, &notation),
-        first_integrals_section(equations, &notation),
+        system_section(system, equations, notation),
+        kinematics_section(system, notation),
+        lagrangian_section(equations, notation),
+        lagrange_section(equations, notation),
+        first_integrals_section(equations, notation),
     ]
 }
 
-/// A new document titled `title` with the equations-of-motion sections.
+/// A new document titled `title` with the equations-of-motion sections, in the system's
+/// notation ([`Notation::of`]).
 #[must_use]
 pub fn solution_document(title: &str, system: &System, equations: &Equations) -> Document {
+    solution_document_in(title, system, equations, &Notation::of(system))
+}
+
+/// [`solution_document`] in `notation`: the later sections written in the same notation reuse
+/// the names it gives to long shared sub-expressions ([`Notation::name_shared`]).
+#[must_use]
+pub fn solution_document_in(
+    title: &str,
+    system: &System,
+    equations: &Equations,
+    notation: &Notation,
+) -> Document {
     Document {
         title: title.to_string(),
-        sections: equations_of_motion_sections(system, equations),
+        sections: equations_of_motion_sections(system, equations, notation),
     }
 }
 
@@ -331,16 +347,18 @@ fn pure_equations(equations: &Equations, notation: &Notation) -> Section {
     // more than M q̈ = f); the factored form adj(M) f/Δ is shown when it fits.
     if let Some(accelerations) = crate::accelerations::for_report(equations) {
         pure.paragraph("Solved for the accelerations:");
-        pure.equations(
+        let named = notation.name_shared(&accelerations);
+        let mut lines = named.definitions;
+        lines.extend(
             coordinates
                 .iter()
-                .zip(&accelerations)
+                .zip(&named.exprs)
                 .enumerate()
                 .map(|(j, (q, a))| {
                     Equation::new(rate(q, 2), acceleration(equations, notation, j, *a))
-                })
-                .collect(),
+                }),
         );
+        pure.equations(lines);
     }
     pure
 }

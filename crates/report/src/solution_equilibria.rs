@@ -8,9 +8,7 @@ use mechanics::equilibria::{Equilibrium, EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
 
 use crate::document::{push_sign, Block, Cell, Equation, Math, Notation, Section};
-use crate::equilibria::{
-    condition_text, free_response_waves, stability_word, LinearizedResult, Wave,
-};
+use crate::equilibria::{free_response_waves, stability_word, LinearizedResult, Wave};
 
 /// Both sections.
 #[must_use]
@@ -75,7 +73,7 @@ fn equilibria_section(
     }
     s.blocks.push(equilibria_table(rest, set, lin, notation));
     for (i, (e, l)) in set.equilibria.iter().zip(lin).enumerate() {
-        if let Some(sentence) = stability_sentence(i, e, l) {
+        if let Some(sentence) = stability_sentence(i, e, l, notation) {
             s.paragraph(sentence);
         }
     }
@@ -126,23 +124,19 @@ fn equilibria_table(
 }
 
 /// The criterion that decided equilibrium `i`'s stability, and when it exists.
-fn stability_sentence(i: usize, e: &Equilibrium, l: &LinearizedResult) -> Option<String> {
+fn stability_sentence(
+    i: usize,
+    e: &Equilibrium,
+    l: &LinearizedResult,
+    notation: &Notation,
+) -> Option<String> {
     let mut sentence = String::new();
     match l {
         Ok(l) => sentence.push_str(&format!("Equilibrium {i}: {}.", l.criterion)),
         Err(err) => sentence.push_str(&format!("Equilibrium {i}: stability not decided: {err}.")),
     }
-    let conditions: Vec<String> = e
-        .conditions
-        .iter()
-        .map(|c| {
-            condition_text(c, cas::print::to_unicode)
-                .replace(" != ", " ≠ ")
-                .replace(" <= ", " ≤ ")
-                .replace(" >= ", " ≥ ")
-                .replace(" == ", " = ")
-        })
-        .collect();
+    // Conditions that hold for positive parameters are left out (docs/solve.md).
+    let conditions = notation.conditions(&e.conditions);
     if !conditions.is_empty() {
         sentence.push_str(&format!(
             " It exists only when {}.",

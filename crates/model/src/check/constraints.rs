@@ -224,6 +224,9 @@ impl Checker {
         if spec.direction.is_some() && direction.is_none() {
             return;
         }
+        let Some(projection) = self.projection(spec) else {
+            return;
+        };
         if let Some(point) = point {
             if complete {
                 self.model.releases.push(Release {
@@ -233,9 +236,31 @@ impl Checker {
                     members,
                     direction,
                     constraint: None,
+                    projection,
                     span,
                 });
             }
+        }
+    }
+
+    /// The projection of a `reaction NAME: …` statement resolved: `Some(None)` without one,
+    /// `None` when it has errors (reported).
+    fn projection(&mut self, spec: &ast::ReleaseSpec) -> Option<Option<Projection>> {
+        match &spec.projection {
+            None => Some(None),
+            Some(ast::ReleaseProjection::Frame(frame)) => {
+                match self.lookup(frame, NameKind::Frame) {
+                    Some(Target::Frame(id)) => Some(Some(Projection::Frame(id))),
+                    _ => None,
+                }
+            }
+            Some(ast::ReleaseProjection::Along(d)) => self
+                .expr(
+                    d,
+                    Type::Vector,
+                    Place::configuration("the direction a reaction is projected on"),
+                )
+                .map(|e| Some(Projection::Along(e))),
         }
     }
 
@@ -246,6 +271,9 @@ impl Checker {
             .as_ref()
             .and_then(|d| self.expr(d, Type::Vector, Place::configuration("a contact normal")));
         let Some(Target::Constraint(id)) = self.lookup(&spec.point, NameKind::Constraint) else {
+            return;
+        };
+        let Some(projection) = self.projection(spec) else {
             return;
         };
         let ConstraintKind::Rolling { body, contact } = self.model.constraints[id.index()].kind
@@ -269,6 +297,7 @@ impl Checker {
                 members: vec![ReleaseMember::Body(body)],
                 direction: Some(direction),
                 constraint: Some(id),
+                projection,
                 span,
             });
         }

@@ -468,13 +468,15 @@ impl<'s> Parser<'s> {
             let point = self.ident("the name of a rolling constraint")?;
             self.expect_keyword("normal")
                 .map_err(|d| d.with_help("Write `reaction NAME: rolling ROLL normal n`."))?;
+            let direction = Some(self.expr()?);
             return Ok(StatementKind::Release {
                 name,
                 spec: ReleaseSpec {
                     word: ReleaseWord::Rolling,
                     point,
                     members: Vec::new(),
-                    direction: Some(self.expr()?),
+                    direction,
+                    projection: self.release_projection(true)?,
                 },
             });
         } else {
@@ -498,6 +500,7 @@ impl<'s> Parser<'s> {
                 Some(self.expr()?)
             }
         };
+        let projection = self.release_projection(word != ReleaseWord::Rope)?;
         Ok(StatementKind::Release {
             name,
             spec: ReleaseSpec {
@@ -505,8 +508,24 @@ impl<'s> Parser<'s> {
                 point,
                 members,
                 direction,
+                projection,
             },
         })
+    }
+
+    /// The optional `in frame R` or (when `along` is free, not a rope's direction) `along n`
+    /// that ends a `reaction NAME: …` statement.
+    fn release_projection(&mut self, along: bool) -> ParseResult<Option<ReleaseProjection>> {
+        if self.eat_keyword("in").is_some() {
+            self.expect_keyword("frame").map_err(|d| {
+                d.with_help("Write `… in frame R` to have the force's components along R's axes.")
+            })?;
+            return Ok(Some(ReleaseProjection::Frame(self.ident("a frame")?)));
+        }
+        if along && self.eat_keyword("along").is_some() {
+            return Ok(Some(ReleaseProjection::Along(self.expr()?)));
+        }
+        Ok(None)
     }
 
     fn initial(&mut self) -> ParseResult<StatementKind> {

@@ -3,6 +3,7 @@
 
 use std::fmt::Write as _;
 
+use super::prose::{pieces, Piece};
 use super::{Block, Cell, Document, Equation};
 
 impl Document {
@@ -32,15 +33,15 @@ impl Document {
             for b in &s.blocks {
                 match b {
                     Block::Paragraph(p) => {
-                        let _ = writeln!(out, "{}\n", latex_text(p));
+                        let _ = writeln!(out, "{}\n", latex_prose(p));
                     }
                     Block::Remark(p) => {
-                        let _ = writeln!(out, "\\textit{{Obs.}} {}\n", latex_text(p));
+                        let _ = writeln!(out, "\\textit{{Obs.}} {}\n", latex_prose(p));
                     }
                     Block::List(items) => {
                         let _ = writeln!(out, "\\begin{{itemize}}");
                         for item in items {
-                            let _ = writeln!(out, "\\item {}", latex_text(item));
+                            let _ = writeln!(out, "\\item {}", latex_prose(item));
                         }
                         let _ = writeln!(out, "\\end{{itemize}}\n");
                     }
@@ -61,7 +62,7 @@ impl Document {
                             let cells: Vec<String> = r
                                 .iter()
                                 .map(|c| match c {
-                                    Cell::Text(t) => latex_text(t),
+                                    Cell::Text(t) => latex_prose(t),
                                     Cell::Math(m) => format!("${}$", m.latex),
                                 })
                                 .collect();
@@ -80,7 +81,7 @@ impl Document {
                             // refers to it.
                             "\\begin{{center}}\n\\includegraphics[width={}\\textwidth]{{{path}}}\n\\captionof*{{figure}}{{{}}}\n\\end{{center}}\n",
                             f64::from(*width) / 100.0,
-                            latex_text(caption)
+                            latex_prose(caption)
                         );
                     }
                     Block::Link { path, text } => {
@@ -377,6 +378,19 @@ fn inline_operand(s: &str, numerator: bool) -> String {
     }
 }
 
+/// Prose for LaTeX through the prose layer shared with the Markdown writer: its mathematics
+/// as inline `$…$`, names in backticks in `\texttt`, the rest by [`latex_text`].
+fn latex_prose(s: &str) -> String {
+    pieces(s)
+        .into_iter()
+        .map(|p| match p {
+            Piece::Text(t) => latex_text(&t),
+            Piece::Math(m) => format!("${m}$"),
+            Piece::Code(c) => format!("\\texttt{{{}}}", latex_text(&c)),
+        })
+        .collect()
+}
+
 /// Prose for LaTeX: special characters escaped; the Unicode mathematics prose carries (Greek
 /// letters, `θ̇`, `x̂`, `−`, `²`) written as inline math, so that `pdflatex` compiles it.
 fn latex_text(s: &str) -> String {
@@ -431,7 +445,7 @@ fn latex_text(s: &str) -> String {
 
 /// A precomposed Latin letter with a dot, two dots or a hat above: its base letter and the
 /// LaTeX accent (the table is Unicode's canonical decomposition of these letters).
-fn accented_letter(ch: char) -> Option<(char, &'static str)> {
+pub(super) fn accented_letter(ch: char) -> Option<(char, &'static str)> {
     const LETTERS: [(char, char, &str); 84] = [
         ('Â', 'A', "hat"),
         ('Ä', 'A', "ddot"),
@@ -525,7 +539,7 @@ fn accented_letter(ch: char) -> Option<(char, &'static str)> {
 }
 
 /// The math-mode spelling of the non-ASCII characters prose may contain.
-fn math_symbol(ch: char) -> Option<&'static str> {
+pub(super) fn math_symbol(ch: char) -> Option<&'static str> {
     const GREEK: [(char, &str); 41] = [
         ('α', r"\alpha"),
         ('β', r"\beta"),

@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 
 use super::latex::aligned_lines_to;
+use super::prose::{pieces, Piece};
 
 /// Glyphs per display line of the Markdown rendering (see `latex::visible_width`): a Jupyter
 /// Book's text column (about 790 px in a 1000 px window) in MathJax's type, with room to spare;
@@ -22,14 +23,14 @@ impl Document {
             for b in &s.blocks {
                 match b {
                     Block::Paragraph(p) => {
-                        let _ = writeln!(out, "{p}\n");
+                        let _ = writeln!(out, "{}\n", markdown_prose(p));
                     }
                     Block::Remark(p) => {
-                        let _ = writeln!(out, "```{{note}}\n{p}\n```\n");
+                        let _ = writeln!(out, "```{{note}}\n{}\n```\n", markdown_prose(p));
                     }
                     Block::List(items) => {
                         for item in items {
-                            let _ = writeln!(out, "- {item}");
+                            let _ = writeln!(out, "- {}", markdown_prose(item));
                         }
                         out.push('\n');
                     }
@@ -60,9 +61,22 @@ impl Document {
     }
 }
 
+/// Prose with its mathematics as inline `$…$` (the prose layer shared with the LaTeX writer)
+/// and its names in backticks as code.
+pub(super) fn markdown_prose(s: &str) -> String {
+    pieces(s)
+        .into_iter()
+        .map(|p| match p {
+            Piece::Text(t) => t,
+            Piece::Math(m) => format!("${m}$"),
+            Piece::Code(c) => format!("`{c}`"),
+        })
+        .collect()
+}
+
 fn markdown_cell(c: &Cell) -> String {
     match c {
-        Cell::Text(t) => t.replace('|', "\\|"),
+        Cell::Text(t) => markdown_prose(t).replace('|', "\\|"),
         Cell::Math(m) => format!("${}$", m.latex.replace('|', "\\vert ")),
     }
 }

@@ -9,7 +9,16 @@
 mod json;
 mod latex;
 mod markdown;
+mod positive;
+mod prose;
+mod shared;
 mod text;
+
+pub use positive::positive_root;
+pub use shared::Named;
+
+use std::cell::RefCell;
+use std::rc::Rc;
 
 use cas::print::{to_latex, to_unicode};
 use cas::Expr;
@@ -25,10 +34,19 @@ const TERMWISE_MAX: usize = 4;
 /// [`cas::print::spread_and_fold`]. The value is never changed. It also names the Lagrangian:
 /// `ℒ` (`\mathcal{L}`) as the course writes it, so that a length `L` reads apart from it;
 /// [`Notation::with_lagrangian`] changes that (docs/solve.md).
+///
+/// A notation also remembers the names it gave to long shared sub-expressions
+/// ([`Notation::name_shared`]); its clones share them, so a name is defined once per document.
 #[derive(Clone, Debug)]
 pub struct Notation {
     names: Vec<(Expr, Expr)>,
     lagrangian: Math,
+    /// The model's own names, which a new name must not take.
+    taken: Vec<String>,
+    /// The names given so far (symbol, definition), shared by the clones.
+    shared: Rc<RefCell<Vec<(Expr, Expr)>>>,
+    /// The parameters whose values are positive, taken positive in symbolic statements.
+    positive: Vec<String>,
 }
 
 impl Default for Notation {
@@ -36,6 +54,9 @@ impl Default for Notation {
         Notation {
             names: Vec::new(),
             lagrangian: Math::label("ℒ", r"\mathcal{L}"),
+            taken: Vec::new(),
+            shared: Rc::default(),
+            positive: Vec::new(),
         }
     }
 }
@@ -50,6 +71,14 @@ impl Notation {
                 .iter()
                 .map(|(name, value)| (Expr::symbol(name), *value))
                 .collect(),
+            taken: system
+                .parameters()
+                .iter()
+                .map(|(name, _)| name.clone())
+                .chain(system.coordinates().iter().cloned())
+                .chain(system.constants().iter().map(|(name, _)| name.clone()))
+                .collect(),
+            positive: positive_parameters(system),
             ..Notation::default()
         }
     }
@@ -71,6 +100,10 @@ impl Notation {
     /// The expression as people read it in this notation.
     #[must_use]
     pub fn shape(&self, e: Expr) -> Expr {
+        let e = self.split_roots(e);
+        if self.has_shared_name(e) {
+            return cas::print::fold_names(e, &self.names);
+        }
         cas::print::spread_and_fold(e, &self.names)
     }
 
@@ -126,6 +159,23 @@ impl Notation {
     pub fn vector(&self, components: &[Expr; 3]) -> Math {
         Math::vector(&components.map(|c| self.shape(c)))
     }
+}
+
+/// The parameters whose values (from the earlier parameters) are positive numbers.
+fn positive_parameters(system: &mechanics::System) -> Vec<String> {
+    let mut values: Vec<(String, f64)> = Vec::new();
+    for (name, value) in system.parameters() {
+        let Some(value) = value else { continue };
+        let lookup = |s: cas::Symbol| values.iter().find(|(n, _)| n == s.name()).map(|(_, v)| *v);
+        if let Ok(x) = value.eval(&lookup) {
+            values.push((name.clone(), x));
+        }
+    }
+    values
+        .into_iter()
+        .filter(|(_, v)| *v > 0.0)
+        .map(|(n, _)| n)
+        .collect()
 }
 
 /// A piece of mathematics in the two notations people read.
@@ -426,17 +476,45 @@ mod tests {
         let md = d.to_markdown();
         assert!(md.contains("## Kinematics"));
         assert!(md.contains("$$\n\\begin{aligned}\n\\vec{r}_P &= "));
-        assert!(md.contains("```{note}\nθ = 0 is stable.\n```"));
+        assert!(md.contains("```{note}\n$\\theta = 0$ is stable.\n```"));
         assert!(md.contains("| $0$ | yes |"));
         let tex = d.to_latex();
         assert!(tex.starts_with("\\documentclass"));
         assert!(tex.ends_with("\\end{document}\n"));
         assert!(tex.contains("100\\% on the rod\\_1 \\& \\#2."));
-        assert!(tex.contains("\\textit{Obs.} $\\theta$ = 0 is stable."));
+        assert!(tex.contains("\\textit{Obs.} $\\theta = 0$ is stable."));
         assert_eq!(
             tex.matches("\\begin{align*}").count(),
             tex.matches("\\end{align*}").count()
         );
+    }
+
+    #[test]
+    fn prose_math_is_math_in_markdown_and_latex() {
+        let mut s = Section::new("Notes", 2);
+        s.paragraph("The cart of mass m_A carries Q_θ = C and ω² < 2 a g (`mesh`).");
+        s.blocks
+            .push(Block::List(vec!["The bob m_B, at r_B.".into()]));
+        s.remark("θ̇ stays small.");
+        let d = Document {
+            title: "t".into(),
+            sections: vec![s],
+        };
+        let md = d.to_markdown();
+        let tex = d.to_latex();
+        for out in [&md, &tex] {
+            assert!(
+                out.contains("mass $m_A$ carries $Q_{\\theta} = C$ and $\\omega^2 < 2 a g$"),
+                "{out}"
+            );
+            assert!(out.contains("The bob $m_B$, at $r_B$."), "{out}");
+            assert!(out.contains("$\\dot{\\theta}$ stays small."), "{out}");
+            assert!(!out.contains("m\\_A") && !out.contains('θ'), "{out}");
+        }
+        assert!(md.contains("(`mesh`)."), "{md}");
+        assert!(tex.contains("(\\texttt{mesh})."), "{tex}");
+        // The terminal keeps the Unicode.
+        assert!(d.to_text().contains("mass m_A carries Q_θ = C"));
     }
 
     #[test]
