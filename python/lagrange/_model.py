@@ -130,7 +130,7 @@ class Model:
         """Integrates the equations of motion from the initial state.
 
         ``t_end`` defaults to the model's ``simulate to T``. Options, as the command line's:
-        ``method`` (``"dopri5"``, ``"gauss"``, ``"sdirk"``), ``t_start``, ``rtol``, ``atol``,
+        ``method`` (``"dopri5"``, ``"dop853"``, ``"gauss"``, ``"sdirk"``; default: by the tolerance), ``t_start``, ``rtol``, ``atol``,
         ``output_step``, ``step``, ``stop_when`` (an expression whose zero ends the run),
         ``through_contact_loss``, ``max_steps``, ``max_rows``.
 

@@ -327,7 +327,7 @@ fn method_named(name: Option<&str>) -> PyResult<Option<MethodName>> {
     name.map(|n| {
         MethodName::parse(n).ok_or_else(|| {
             PyValueError::new_err(format!(
-                "unknown method `{n}` (available: dopri5, gauss, sdirk)"
+                "unknown method `{n}` (available: dopri5, dop853, gauss, sdirk)"
             ))
         })
     })

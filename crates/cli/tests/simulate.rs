@@ -47,7 +47,7 @@ fn writes_the_csv_with_header_rows_and_summary() {
     assert!(data.iter().all(|r| r[5].abs() < 1e-7 && r[6] == 0.0));
     let summary = text(&o.stderr);
     assert!(
-        summary.starts_with("dopri5: t = 2.000000 of 2, ") && summary.contains(" rejected), "),
+        summary.starts_with("dop853: t = 2.000000 of 2, ") && summary.contains(" rejected), "),
         "{summary}"
     );
     assert!(summary.contains("evaluations") && summary.contains("final energy error"));

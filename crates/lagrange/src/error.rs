@@ -96,7 +96,7 @@ pub enum Error {
     #[error("no end time: give one, or write `simulate to T` in the model")]
     NoEndTime,
     /// An unknown integration method named in the model's `simulate` statement.
-    #[error("unknown method `{name}` (available: dopri5, gauss, sdirk)")]
+    #[error("unknown method `{name}` (available: dopri5, dop853, gauss, sdirk)")]
     UnknownMethod {
         /// The name.
         name: String,

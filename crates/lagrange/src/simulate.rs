@@ -17,7 +17,8 @@ use crate::{Analysis, Error};
 /// default (dopri5, rtol 1e-8, atol 1e-10, from 0, a row every step).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SimulationOptions {
-    /// The method.
+    /// The method (default: the model's, else chosen by the relative tolerance,
+    /// [`MethodName::for_tolerance`]).
     pub method: Option<MethodName>,
     /// Start time.
     pub t_start: Option<f64>,
@@ -332,17 +333,17 @@ impl Analysis {
             model?.evaluate_constant(e)
         };
         let method = match options.method {
-            Some(m) => m,
+            Some(m) => Some(m),
             None => match statement.and_then(|s| s.method.as_ref()) {
-                Some(name) => MethodName::parse(&name.name).ok_or_else(|| {
+                Some(name) => Some(MethodName::parse(&name.name).ok_or_else(|| {
                     self.in_statement(
                         Error::UnknownMethod {
                             name: name.name.clone(),
                         },
                         name.span,
                     )
-                })?,
-                None => MethodName::Dopri5,
+                })?),
+                None => None,
             },
         };
         let t_end = options
@@ -350,7 +351,6 @@ impl Analysis {
             .or_else(|| from_model(|s| s.to.as_ref()))
             .ok_or(Error::NoEndTime)?;
         let mut settings = Settings::new(t_end);
-        settings.method = method;
         settings.t_start = options
             .t_start
             .or_else(|| from_model(|s| s.from.as_ref()))
@@ -363,6 +363,8 @@ impl Analysis {
             .atol
             .or_else(|| from_model(|s| s.atol.as_ref()))
             .unwrap_or(settings.atol);
+        // Without a method named, the tolerance decides (dop853 for tight ones).
+        settings.method = method.unwrap_or_else(|| MethodName::for_tolerance(settings.rtol));
         settings.output_step = options
             .output_step
             .or_else(|| from_model(|s| s.step.as_ref()));

@@ -96,7 +96,7 @@ fn a_run_writes_its_csv_events_summary_and_plot() {
     assert!(svg.contains("<svg") && svg.contains("simple-pendulum"));
     assert!(written
         .summary_line
-        .starts_with("dopri5: t = 3.000000 of 3, "));
+        .starts_with("dop853: t = 3.000000 of 3, "));
     assert_eq!(written.written, files.outputs().collect::<Vec<_>>());
     assert_eq!(written.streamed.ending, Ending::Finished);
 }

@@ -22,6 +22,9 @@ use crate::forms::{Canonical, SecondOrder};
 pub enum MethodName {
     /// `dopri5` (also `rk45`): adaptive Dormand–Prince 5(4) with dense output.
     Dopri5,
+    /// `dop853`: adaptive Dormand–Prince 8(5,3) with dense output of order 7; fewer
+    /// evaluations than dopri5 at tight tolerances.
+    Dop853,
     /// `gauss` (also `symplectic`): Gauss–Legendre order 6 on Hamilton's equations.
     Gauss,
     /// `sdirk` (also `implicit`, `stiff`): L-stable SDIRK of order 2 for stiff systems.
@@ -34,17 +37,38 @@ impl MethodName {
     pub fn parse(name: &str) -> Option<MethodName> {
         match name {
             "dopri5" | "rk45" | "rk" | "explicit" => Some(MethodName::Dopri5),
+            "dop853" | "rk853" => Some(MethodName::Dop853),
             "gauss" | "symplectic" | "gauss-legendre" | "variational" => Some(MethodName::Gauss),
             "sdirk" | "implicit" | "stiff" | "bdf" => Some(MethodName::Sdirk),
             _ => None,
         }
     }
+
+    /// The method of a run that names none: [`MethodName::Dop853`] below a relative
+    /// tolerance of 1e-6, else [`MethodName::Dopri5`] — whichever takes fewer evaluations
+    /// there (docs/simulation.md, "The default method").
+    #[must_use]
+    pub fn for_tolerance(rtol: f64) -> MethodName {
+        if rtol < DOP853_BELOW_RTOL {
+            MethodName::Dop853
+        } else {
+            MethodName::Dopri5
+        }
+    }
 }
+
+/// The relative tolerance below which a run that names no method uses dop853
+/// ([`MethodName::for_tolerance`]). Measured on eight models (docs/simulation.md, "The
+/// default method"): at rtol 1e-7 and below dop853 takes fewer evaluations than dopri5 on
+/// every one (0.95× on the chaotic double pendulum, 0.36–0.72× on the others); at 1e-6 the
+/// double pendulum still takes 13 % more with dop853.
+const DOP853_BELOW_RTOL: f64 = 1e-6;
 
 impl fmt::Display for MethodName {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
             MethodName::Dopri5 => "dopri5",
+            MethodName::Dop853 => "dop853",
             MethodName::Gauss => "gauss",
             MethodName::Sdirk => "sdirk",
         })
@@ -78,12 +102,13 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// dopri5 from 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, a row every accepted step, at
-    /// most 10⁶ steps and 10⁶ rows.
+    /// From 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, with the method for that tolerance
+    /// ([`MethodName::for_tolerance`]: dop853), a row every accepted step, at most 10⁶ steps
+    /// and 10⁶ rows.
     #[must_use]
     pub fn new(t_end: f64) -> Settings {
         Settings {
-            method: MethodName::Dopri5,
+            method: MethodName::for_tolerance(1e-8),
             t_start: 0.0,
             t_end,
             rtol: 1e-8,
@@ -584,14 +609,14 @@ impl Simulation {
         // callback at a time, so they share it through a RefCell.
         let rows = RefCell::new(RowMaker::new(&self.compiled, self.initial_energy));
         match method {
-            MethodName::Dopri5 | MethodName::Sdirk => {
+            MethodName::Dopri5 | MethodName::Dop853 | MethodName::Sdirk => {
                 let mut system = SecondOrder::new(&mut self.compiled);
                 integrate_observed(
                     &mut system,
-                    if method == MethodName::Sdirk {
-                        Method::Sdirk
-                    } else {
-                        Method::Dopri5
+                    match method {
+                        MethodName::Sdirk => Method::Sdirk,
+                        MethodName::Dop853 => Method::Dop853,
+                        _ => Method::Dopri5,
                     },
                     t0,
                     &self.initial,

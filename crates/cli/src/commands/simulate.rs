@@ -24,9 +24,10 @@ pub struct SimulateArgs {
     /// Start time (default: the model's `simulate from`, else 0).
     #[arg(long, allow_hyphen_values = true)]
     pub t_start: Option<f64>,
-    /// Integration method (default: the model's, else dopri5): dopri5 (adaptive
-    /// Dormand–Prince 5(4)), gauss (Gauss–Legendre order 6, fixed step, symplectic), sdirk
-    /// (L-stable implicit SDIRK of order 2, for stiff systems).
+    /// Integration method (default: the model's, else dopri5 at rtol ≥ 1e-6 and dop853 below):
+    /// dopri5 (adaptive Dormand–Prince 5(4)), dop853 (adaptive Dormand–Prince 8(5,3)), gauss
+    /// (Gauss–Legendre order 6, fixed step, symplectic), sdirk (L-stable implicit SDIRK of
+    /// order 2, for stiff systems).
     #[arg(long, value_parser = method)]
     pub method: Option<MethodName>,
     /// Relative tolerance (default: the model's, else 1e-8).
@@ -96,7 +97,8 @@ pub struct SimulateArgs {
 
 /// `--method NAME`, by the names the model's `simulate` statement takes too.
 fn method(name: &str) -> Result<MethodName, String> {
-    MethodName::parse(name).ok_or_else(|| format!("unknown method `{name}` (dopri5, gauss, sdirk)"))
+    MethodName::parse(name)
+        .ok_or_else(|| format!("unknown method `{name}` (dopri5, dop853, gauss, sdirk)"))
 }
 
 /// The run options the flags ask for.

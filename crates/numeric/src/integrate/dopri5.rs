@@ -59,11 +59,11 @@ fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopRea
     driver.rhs(driver.t, &y0, &mut k[0])?;
     let mut h = match driver.options.step {
         Some(h) if h.is_finite() && h > 0.0 => h,
-        _ => initial_step(driver, &k[0])?,
+        _ => initial_step(driver, &k[0], 5)?,
     };
     let mut previous_error: f64 = 1e-4;
     let mut rejected_last = false;
-    let mut stiffness = Stiffness::default();
+    let mut stiffness = Stiffness::new(STIFF_H_LAMBDA);
     loop {
         let t = driver.t;
         let span = (driver.t_end - t).abs();
@@ -229,9 +229,13 @@ fn dense_coefficients(
     }
 }
 
-/// Hairer's starting step: a first guess from `‖y‖/‖y'‖`, refined with one Euler step's
-/// estimate of the second derivative.
-fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
+/// Hairer's starting step for a method of order `order`: a first guess from `‖y‖/‖y'‖`,
+/// refined with one Euler step's estimate of the second derivative.
+pub(super) fn initial_step(
+    driver: &mut Driver<'_>,
+    f0: &[f64],
+    order: i32,
+) -> Result<f64, Failure> {
     let n = driver.y.len();
     let (rtol, atol) = (driver.options.rtol, driver.options.atol);
     let scale: Vec<f64> = driver.y.iter().map(|y| atol + rtol * y.abs()).collect();
@@ -265,7 +269,7 @@ fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
     let h1 = if d1.max(d2) <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {
-        (0.01 / d1.max(d2)).powf(0.2)
+        (0.01 / d1.max(d2)).powf(1.0 / f64::from(order))
     };
     // A span so long (or a start time so large) that even the dynamics' own estimate `h1`
     // is below the step floor cannot be covered: say so now, with that step, rather than
@@ -278,29 +282,49 @@ fn initial_step(driver: &mut Driver<'_>, f0: &[f64]) -> Result<f64, Failure> {
     Ok((100.0 * h0).min(h1).min(span).max(1e-12).max(floor))
 }
 
-/// Hairer's stiffness test (the code DOPRI5): `h·|λ| ≈ h‖k₇ − k₆‖ / ‖y₁ − Y₆‖` at the step
-/// boundary of the stability region, many steps in a row, means the step is held down by
+/// Hairer's stiffness test (the codes DOPRI5 and DOP853): `h·|λ|`, estimated from the last
+/// stage and the new point, both at `t + h` (`h‖k₇ − k₆‖ / ‖y₁ − Y₆‖` for dopri5), at the
+/// boundary of the stability region many steps in a row means the step is held down by
 /// stability: the problem is stiff for this method.
-#[derive(Debug, Default)]
-struct Stiffness {
+#[derive(Debug)]
+pub(super) struct Stiffness {
+    /// `h·|λ|` above this is near the boundary (the method's).
+    threshold: f64,
     /// Consecutive steps near the boundary.
     stiff: u32,
     /// Consecutive steps away from it since the last one near it.
     calm: u32,
     /// The last estimate of `h·|λ|`.
-    last: f64,
+    pub(super) last: f64,
 }
 
 impl Stiffness {
+    /// A fresh test against `threshold`.
+    pub(super) fn new(threshold: f64) -> Self {
+        Stiffness {
+            threshold,
+            stiff: 0,
+            calm: 0,
+            last: 0.0,
+        }
+    }
+
     /// Takes the accepted step's estimate; returns the count when the run is judged stiff.
-    fn observe(&mut self, h: f64, k7: &[f64], k6: &[f64], y1: &[f64], y6: &[f64]) -> Option<u32> {
+    pub(super) fn observe(
+        &mut self,
+        h: f64,
+        k7: &[f64],
+        k6: &[f64],
+        y1: &[f64],
+        y6: &[f64],
+    ) -> Option<u32> {
         let numerator: f64 = k7.iter().zip(k6).map(|(a, b)| (a - b).powi(2)).sum();
         let denominator: f64 = y1.iter().zip(y6).map(|(a, b)| (a - b).powi(2)).sum();
         if denominator <= 0.0 || !numerator.is_finite() {
             return None;
         }
         self.last = h * (numerator / denominator).sqrt();
-        if self.last > STIFF_H_LAMBDA {
+        if self.last > self.threshold {
             self.calm = 0;
             self.stiff += 1;
             if self.stiff >= STIFF_STEPS {

@@ -112,7 +112,7 @@ impl OdeSystem for RecordingOscillator {
 
 #[test]
 fn recorded_events_give_every_crossing_with_its_direction() {
-    for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+    for method in [Method::Dopri5, Method::Dop853, Method::Gauss, Method::Sdirk] {
         let options = IntegratorOptions {
             rtol: 1e-10,
             atol: 1e-12,
@@ -308,7 +308,7 @@ fn a_runaway_stops_at_once_with_the_collapsed_step() {
     // g = 1e300: the step needed is ~1e-150 of the span; the run stops on the first step
     // instead of writing rows for ever.
     let options = IntegratorOptions::default();
-    for method in [Method::Dopri5, Method::Sdirk, Method::Gauss] {
+    for method in [Method::Dopri5, Method::Dop853, Method::Sdirk, Method::Gauss] {
         let (outcome, rows) = count_rows(
             &mut Fast { omega2: 1e300 },
             method,
@@ -438,7 +438,7 @@ fn the_step_and_row_limits_stop_the_run_with_the_rows_so_far() {
         other => panic!("{other:?}"),
     }
     // Many rows inside one step (a fine output step) are limited as well.
-    for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+    for method in [Method::Dopri5, Method::Dop853, Method::Gauss, Method::Sdirk] {
         let (outcome, rows) = count_rows(
             &mut Oscillator { events: false },
             method,
@@ -547,7 +547,7 @@ fn a_span_far_too_long_for_the_motion_stops_at_once_at_the_motions_own_step() {
     // The oscillator's period is 2π: an end time of 1e29 (or 1e308, where stepping at the
     // floor overflowed the state into "not finite") would take ~1e30 steps.
     for t_end in [1e29, 1e308] {
-        for method in [Method::Dopri5, Method::Gauss, Method::Sdirk] {
+        for method in [Method::Dopri5, Method::Dop853, Method::Gauss, Method::Sdirk] {
             let (outcome, rows) = count_rows(
                 &mut Oscillator { events: false },
                 method,
@@ -591,6 +591,8 @@ fn an_observer_that_breaks_halts_the_run_after_its_row() {
     for (method, output_step) in [
         (Method::Dopri5, None),
         (Method::Dopri5, Some(0.01)),
+        (Method::Dop853, None),
+        (Method::Dop853, Some(0.01)),
         (Method::Gauss, Some(0.01)),
         (Method::Sdirk, None),
     ] {
