@@ -15,6 +15,10 @@ use crate::{Analysis, Error};
 /// many, evenly spread, and the last).
 pub const PLOTTED_ROWS: usize = 5_000;
 
+/// The intervals between the plotted rows of a solution's simulation when the model gives no
+/// output step.
+const PLOT_INTERVALS: f64 = 1_000.0;
+
 /// Image pixels per SVG pixel of the figure of a LaTeX solution (PNG).
 pub const PNG_SCALE: f64 = 2.0;
 
@@ -230,7 +234,17 @@ impl Analysis {
 
     /// The "Simulation" section: the model's own settings, run once.
     fn simulation_part(&self, figures: Option<&Figures>) -> Section {
-        let mut simulation = match self.simulation(&SimulationOptions::default()) {
+        let mut options = SimulationOptions::default();
+        if let Ok(settings) = self.settings(&options) {
+            // Rows at the accepted steps are far apart with an 8th-order method, and the plot
+            // would be a polygon; without a step of the model's, evenly spaced rows from the
+            // dense output draw the curve.
+            if settings.output_step.is_none() {
+                let span = settings.t_end - settings.t_start;
+                options.output_step = Some(span / PLOT_INTERVALS);
+            }
+        }
+        let mut simulation = match self.simulation(&options) {
             Ok(s) => s,
             Err(Error::Located {
                 message,
