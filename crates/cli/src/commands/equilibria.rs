@@ -23,8 +23,14 @@ pub fn run(
         ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
     };
     let as_json = options.format == EomFormat::Json;
-    if let Some(sweep) = &options.sweep {
-        return run_sweep(path, &analysis, &search, sweep, options);
+    match options.sweep.as_slice() {
+        [] => {}
+        [sweep] => return run_sweep(path, &analysis, &search, sweep, options),
+        _ => {
+            return Err(Failure::input(
+                "--sweep takes one parameter here (two only with linearize --periodic)",
+            ))
+        }
     }
     if options.plot.is_some() {
         return Err(Failure::input(
