@@ -808,6 +808,9 @@ fn wrap(x: f64) -> f64 {
     }
 }
 
+/// After one period: `x(T)`, `Φ(T)` (rows), and the accepted steps.
+type OnePeriod = (Vec<f64>, Vec<Vec<f64>>, u64);
+
 /// The state and its variations `y = (x, Φ)` (`Φ` row-major, `2n × 2n`) as an ODE, with
 /// the tape's buffers.
 struct Flow<'a> {
@@ -848,7 +851,7 @@ impl<'a> Flow<'a> {
         &mut self,
         x0: &[f64],
         period: f64,
-    ) -> Result<(Vec<f64>, Vec<Vec<f64>>, u64), FloquetError> {
+    ) -> Result<OnePeriod, FloquetError> {
         let m = 2 * self.system.n;
         let mut y0 = x0.to_vec();
         y0.extend((0..m * m).map(|k| f64::from(u8::from(k / m == k % m))));
