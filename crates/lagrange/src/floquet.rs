@@ -847,11 +847,7 @@ impl<'a> Flow<'a> {
     }
 
     /// `x(T)` and `Φ(T)` from `x(0) = x0`, `Φ(0) = I`, with the accepted steps.
-    fn over(
-        &mut self,
-        x0: &[f64],
-        period: f64,
-    ) -> Result<OnePeriod, FloquetError> {
+    fn over(&mut self, x0: &[f64], period: f64) -> Result<OnePeriod, FloquetError> {
         let m = 2 * self.system.n;
         let mut y0 = x0.to_vec();
         y0.extend((0..m * m).map(|k| f64::from(u8::from(k / m == k % m))));

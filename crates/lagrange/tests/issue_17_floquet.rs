@@ -296,3 +296,30 @@ fn the_period_is_the_common_one_of_the_driving_or_refused() {
     let given = autonomous.floquet(&options).unwrap();
     assert_eq!(given.results[0].period_source, PeriodSource::Given);
 }
+
+#[test]
+fn solve_gives_a_floquet_section_for_periodic_models() {
+    let section = |name: &str| {
+        let solution = example(name).solution(None).unwrap();
+        let found = solution
+            .document
+            .sections
+            .iter()
+            .find(|s| s.title.starts_with("Floquet analysis"))
+            .cloned();
+        found.unwrap_or_else(|| panic!("{name}: no Floquet section"))
+    };
+    let mathieu = format!("{:?}", section("mathieu.lag").blocks);
+    // δ = 1/4, ε = 0.2: inside the first tongue, μ = −1.853428 (as `linearize --periodic`).
+    assert!(mathieu.contains("-1.853428") && mathieu.contains("unstable"), "{mathieu}");
+    let kapitza = format!("{:?}", section("kapitza-pendulum.lag").blocks);
+    assert!(kapitza.contains("theta = 3.141593"), "{kapitza}");
+    assert!(!kapitza.contains("\"unstable\""), "{kapitza}");
+    // A model whose equations do not depend on time gets no such section.
+    let pendulum = example("simple-pendulum.lag").solution(None).unwrap();
+    assert!(pendulum
+        .document
+        .sections
+        .iter()
+        .all(|s| !s.title.starts_with("Floquet")));
+}

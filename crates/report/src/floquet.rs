@@ -15,6 +15,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use serde_json::{json, Value};
 
+use crate::document::{Block, Cell, Section};
 use crate::plot::{bounds, register_font, PlotError, FAMILY};
 
 /// The linear stability of a periodic motion from its multipliers.
@@ -183,6 +184,57 @@ pub fn floquet_text(results: &[FloquetResult]) -> String {
         let _ = writeln!(out, "    {}", verdict_line(r));
     }
     out
+}
+
+/// The "Floquet analysis" section of a solution: the period, and for each periodic motion
+/// where it is, its multipliers and verdict; or why there is none (`Err`, a sentence).
+#[must_use]
+pub fn floquet_section(results: Result<&[FloquetResult], String>) -> Section {
+    let mut section = Section::new("Floquet analysis (time-periodic equations)", 2);
+    let results = match results {
+        Ok(r) if !r.is_empty() => r,
+        Ok(_) => {
+            section.paragraph("No periodic motion was found.");
+            return section;
+        }
+        Err(why) => {
+            section.paragraph(format!("Not analysed: {why}."));
+            return section;
+        }
+    };
+    section.paragraph(format!(
+        "The equations depend on time periodically, with period T = {}. About each motion \
+         below, the variational equations were integrated over one period; the eigenvalues \
+         of the monodromy matrix Φ(T) are the Floquet multipliers μ: a small deviation is \
+         multiplied by μ each period.",
+        number(results[0].period)
+    ));
+    let rows = results
+        .iter()
+        .map(|r| {
+            let mu: Vec<String> = r
+                .multipliers
+                .iter()
+                .map(|(re, im)| complex(*re, *im))
+                .collect();
+            vec![
+                Cell::Text(base_line(r)),
+                Cell::Text(mu.join(", ")),
+                Cell::Text(number(r.largest_multiplier())),
+                Cell::Text(r.verdict.name().to_owned()),
+            ]
+        })
+        .collect();
+    section.blocks.push(Block::Table {
+        header: vec![
+            "motion".to_owned(),
+            "multipliers μ".to_owned(),
+            "largest |μ|".to_owned(),
+            "verdict".to_owned(),
+        ],
+        rows,
+    });
+    section
 }
 
 /// The results as JSON (docs/json.md).
