@@ -311,7 +311,10 @@ fn solve_gives_a_floquet_section_for_periodic_models() {
     };
     let mathieu = format!("{:?}", section("mathieu.lag").blocks);
     // δ = 1/4, ε = 0.2: inside the first tongue, μ = −1.853428 (as `linearize --periodic`).
-    assert!(mathieu.contains("-1.853428") && mathieu.contains("unstable"), "{mathieu}");
+    assert!(
+        mathieu.contains("-1.853428") && mathieu.contains("unstable"),
+        "{mathieu}"
+    );
     let kapitza = format!("{:?}", section("kapitza-pendulum.lag").blocks);
     assert!(kapitza.contains("theta = 3.141593"), "{kapitza}");
     assert!(!kapitza.contains("\"unstable\""), "{kapitza}");
