@@ -326,10 +326,10 @@ fn null_vector(m: &[Vec<f64>]) -> Option<Vec<f64>> {
     let mut rank = 0;
     while rank < n {
         let (mut pi, mut pj, mut best) = (rank, rank, 0.0);
-        for i in rank..n {
-            for j in rank..n {
-                if a[i][columns[j]].abs() > best {
-                    (pi, pj, best) = (i, j, a[i][columns[j]].abs());
+        for (i, row) in a.iter().enumerate().skip(rank) {
+            for (j, &column) in columns.iter().enumerate().skip(rank) {
+                if row[column].abs() > best {
+                    (pi, pj, best) = (i, j, row[column].abs());
                 }
             }
         }
@@ -338,12 +338,13 @@ fn null_vector(m: &[Vec<f64>]) -> Option<Vec<f64>> {
         }
         a.swap(rank, pi);
         columns.swap(rank, pj);
-        let pivot = a[rank][columns[rank]];
-        for i in 0..n {
+        let pivot_row = a[rank].clone();
+        let pivot = pivot_row[columns[rank]];
+        for (i, row) in a.iter_mut().enumerate() {
             if i != rank {
-                let factor = a[i][columns[rank]] / pivot;
-                for j in 0..n {
-                    a[i][j] -= factor * a[rank][j];
+                let factor = row[columns[rank]] / pivot;
+                for (x, p) in row.iter_mut().zip(&pivot_row) {
+                    *x -= factor * p;
                 }
             }
         }
@@ -648,23 +649,29 @@ impl ChartLagrangian {
                 dv.iter().for_each(|(i, x)| v[*i] += x);
                 self.at(&s, &v)
             };
-            for i in 0..n {
-                for j in 0..n {
-                    let vv = f(&[], &[(i, dr), (j, dr)])
-                        - f(&[], &[(i, dr), (j, -dr)])
-                        - f(&[], &[(i, -dr), (j, dr)])
-                        + f(&[], &[(i, -dr), (j, -dr)]);
-                    let vs = f(&[(j, h)], &[(i, dr)])
-                        - f(&[(j, h)], &[(i, -dr)])
-                        - f(&[(j, -h)], &[(i, dr)])
-                        + f(&[(j, -h)], &[(i, -dr)]);
-                    let ss = f(&[(i, h), (j, h)], &[])
-                        - f(&[(i, h), (j, -h)], &[])
-                        - f(&[(i, -h), (j, h)], &[])
-                        + f(&[(i, -h), (j, -h)], &[]);
-                    sums[0][i][j] += vv / (4.0 * dr * dr) / 4.0;
-                    sums[1][i][j] += vs / (4.0 * h * dr) / 4.0;
-                    sums[2][i][j] += ss / (4.0 * h * h) / 4.0;
+            let entry = |i: usize, j: usize| -> [f64; 3] {
+                let vv = f(&[], &[(i, dr), (j, dr)])
+                    - f(&[], &[(i, dr), (j, -dr)])
+                    - f(&[], &[(i, -dr), (j, dr)])
+                    + f(&[], &[(i, -dr), (j, -dr)]);
+                let vs = f(&[(j, h)], &[(i, dr)])
+                    - f(&[(j, h)], &[(i, -dr)])
+                    - f(&[(j, -h)], &[(i, dr)])
+                    + f(&[(j, -h)], &[(i, -dr)]);
+                let ss = f(&[(i, h), (j, h)], &[])
+                    - f(&[(i, h), (j, -h)], &[])
+                    - f(&[(i, -h), (j, h)], &[])
+                    + f(&[(i, -h), (j, -h)], &[]);
+                [
+                    vv / (4.0 * dr * dr),
+                    vs / (4.0 * h * dr),
+                    ss / (4.0 * h * h),
+                ]
+            };
+            for (i, j) in (0..n).flat_map(|i| (0..n).map(move |j| (i, j))) {
+                let values = entry(i, j);
+                for (sum, value) in sums.iter_mut().zip(values) {
+                    sum[i][j] += value / bases.len() as f64;
                 }
             }
         }
