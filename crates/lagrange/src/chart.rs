@@ -306,6 +306,41 @@ pub(crate) fn with_pole_sentences(text: &str, poles: &[Option<AtPole>]) -> Strin
     out
 }
 
+/// The decisions at poles as JSON (docs/json.md): one entry per equilibrium, `null` where
+/// the chart was not needed or not made.
+pub(crate) fn poles_json(poles: &[Option<AtPole>]) -> serde_json::Value {
+    use serde_json::json;
+    let entry = |pole: &AtPole| match pole {
+        AtPole::Rest(p) => json!({
+            "kind": "rest",
+            "polar": p.polar,
+            "azimuth": p.azimuth,
+            "chart": p.chart,
+            "hessian": p.hessian,
+            "eigenvalues": p.eigenvalues,
+            "stable": p.stable,
+            "sentence": pole.sentence(),
+        }),
+        AtPole::Spin(p) => json!({
+            "kind": "spin",
+            "polar": p.polar,
+            "azimuth": p.azimuth,
+            "chart": p.chart,
+            "M": p.matrices[0],
+            "G": p.matrices[1],
+            "K": p.matrices[2],
+            "eigenvalues": p.eigenvalues.iter().map(|(re, im)| [*re, *im]).collect::<Vec<_>>(),
+            "stable": p.stable,
+            "isotropic": p.isotropic.map(|(g2, m4k)| json!({ "g_squared": g2, "minus_4mk": m4k })),
+            "sentence": pole.sentence(),
+        }),
+    };
+    poles
+        .iter()
+        .map(|p| p.as_ref().map_or(serde_json::Value::Null, entry))
+        .collect()
+}
+
 /// A factor as reports write it: `1` rather than `1.000000`.
 fn number(x: f64) -> String {
     if (x - x.round()).abs() < 1e-9 {

@@ -110,7 +110,14 @@ impl Equilibria {
     /// [`Equilibria::to_text`] as JSON (docs/json.md).
     #[must_use]
     pub fn to_json(&self) -> Value {
-        print::equilibria_json(&self.rest, &self.set, &self.linearized)
+        let mut json = print::equilibria_json(&self.rest, &self.set, &self.linearized);
+        if let Some(object) = json.as_object_mut() {
+            object.insert(
+                "at_poles".to_owned(),
+                crate::chart::poles_json(&self.at_poles),
+            );
+        }
+        json
     }
 
     /// The linearized dynamics about every equilibrium (or only the `only`-th), with the free

@@ -80,7 +80,8 @@ pub enum FloquetError {
 /// Settings of a Floquet analysis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FloquetOptions {
-    /// The period `T` (default: the common period of the driving, [`Driving`]).
+    /// The period `T` (default: the common period of the driving: of every `sin`/`cos` of
+    /// `ω t + c` in the equations).
     pub period: Option<f64>,
     /// Relative tolerance of the integration over a period (default: 1e-10).
     pub rtol: f64,
