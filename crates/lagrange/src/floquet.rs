@@ -400,6 +400,12 @@ struct Periodic {
 
 /// Newton's starts per coordinate (angles over a turn, other coordinates over −10..10).
 const STARTS_PER_AXIS: usize = 12;
+/// Starts tried by shooting (each costs up to 30 integrations over the period).
+const SHOOTING_STARTS: usize = 16;
+/// The most steps of one integration over the period: a period that needs more (a driving
+/// far slower than the system's own motion, or a stiff one) is refused rather than left to
+/// run for minutes inside the shooting's loops.
+const MAX_STEPS_PER_PERIOD: u64 = 50_000;
 /// Times per period at which the rest equations must hold.
 const SAMPLE_TIMES: usize = 7;
 
@@ -749,7 +755,7 @@ impl Periodic {
     /// Periodic orbits by shooting from the grid of starts (at rest), distinct.
     fn orbits(&self, flow: &mut Flow<'_>, period: f64) -> Vec<Vec<f64>> {
         let mut found: Vec<Vec<f64>> = Vec::new();
-        for start in self.starts().into_iter().take(64) {
+        for start in self.starts().into_iter().take(SHOOTING_STARTS) {
             let mut x = start;
             x.resize(2 * self.n, 0.0);
             if let Some(x) = self.shoot(flow, x, period) {
@@ -853,6 +859,7 @@ impl<'a> Flow<'a> {
         let mut y0 = x0.to_vec();
         y0.extend((0..m * m).map(|k| f64::from(u8::from(k / m == k % m))));
         let options = IntegratorOptions {
+            max_steps: MAX_STEPS_PER_PERIOD,
             rtol: self.rtol,
             atol: self.rtol * 1e-2,
             ..IntegratorOptions::default()
