@@ -80,6 +80,13 @@ pub enum Command {
         /// a rate as `--initial "theta'=0.1"` (repeatable; undamped systems).
         #[arg(long, value_name = "NAME=VALUE")]
         initial: Vec<String>,
+        /// Floquet analysis of a time-periodic system (`sin`/`cos` of `ω t` in the equations):
+        /// the variational equations over one period T about each equilibrium that holds at
+        /// every t (or each periodic orbit, by shooting): monodromy matrix, multipliers,
+        /// exponents, verdict. T defaults to the period of the driving; `--periodic 2*pi`
+        /// gives it.
+        #[arg(long, value_name = "T", num_args = 0..=1, default_missing_value = "")]
+        periodic: Option<String>,
     },
     /// Simulate a model: integrate the equations of motion, write the time history as CSV
     /// (`t`, coordinates, rates `q_d`, energy error, constraint drift) and a summary line.
@@ -152,13 +159,17 @@ pub struct EquilibriumOptions {
     #[arg(long = "steady", value_name = "NAME=RATE")]
     pub steady: Vec<String>,
     /// Sweep a parameter: `--sweep Omega=0..10` prints equilibria and stability at each step.
+    /// With `linearize --periodic`, one or two (repeat the flag) for the stability chart on
+    /// their grid, printed as CSV.
     #[arg(long, value_name = "NAME=A..B")]
-    pub sweep: Option<String>,
+    pub sweep: Vec<String>,
     /// Number of steps of a sweep.
     #[arg(long, default_value_t = 20)]
     pub steps: usize,
     /// With `--sweep`: draw the bifurcation diagram (equilibria against the parameter,
-    /// stable filled, unstable open) to this `.svg` or `.png` file.
+    /// stable filled, unstable open) to this `.svg` or `.png` file; with `linearize
+    /// --periodic`, the stability chart (the stable region of the motion `--equilibrium`,
+    /// default the first).
     #[arg(long, value_name = "FILE")]
     pub plot: Option<std::path::PathBuf>,
 }

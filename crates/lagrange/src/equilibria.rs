@@ -11,6 +11,7 @@ use report::equilibria as print;
 use serde_json::Value;
 
 use crate::assign::{AssignmentError, Range};
+use crate::chart::AtPole;
 use crate::{Analysis, Error};
 
 /// The search range of a coordinate that is not an angle, unless one is given.
@@ -38,6 +39,9 @@ pub struct Equilibria {
     pub linearized: Vec<Result<Linearized, LinearizeError>>,
     /// The inputs, in the order of the columns of `B0`.
     pub inputs: Vec<String>,
+    /// At an equilibrium on a pole of the coordinates, where the linearization cannot
+    /// decide, the stability decided in a regular chart (`None` elsewhere; crate::chart).
+    pub at_poles: Vec<Option<AtPole>>,
 }
 
 /// One step of a parameter sweep: the value, the equilibria there, the linearization about
@@ -99,13 +103,21 @@ impl Equilibria {
     /// The equilibria and their stability, as `lagrange equilibria` prints them.
     #[must_use]
     pub fn to_text(&self) -> String {
-        print::equilibria_text(&self.rest, &self.set, &self.linearized)
+        let text = print::equilibria_text(&self.rest, &self.set, &self.linearized);
+        crate::chart::with_pole_sentences(&text, &self.at_poles)
     }
 
     /// [`Equilibria::to_text`] as JSON (docs/json.md).
     #[must_use]
     pub fn to_json(&self) -> Value {
-        print::equilibria_json(&self.rest, &self.set, &self.linearized)
+        let mut json = print::equilibria_json(&self.rest, &self.set, &self.linearized);
+        if let Some(object) = json.as_object_mut() {
+            object.insert(
+                "at_poles".to_owned(),
+                crate::chart::poles_json(&self.at_poles),
+            );
+        }
+        json
     }
 
     /// The linearized dynamics about every equilibrium (or only the `only`-th), with the free
@@ -184,11 +196,13 @@ impl Analysis {
         self.limited("finding the equilibria", || {
             let prepared = self.prepare_equilibria(search)?;
             let (set, linearized) = prepared.at(&prepared.values)?;
+            let at_poles = poles(&prepared, search, &set, &linearized);
             Ok(Equilibria {
                 rest: prepared.rest,
                 set,
                 linearized,
                 inputs: prepared.inputs,
+                at_poles,
             })
         })
     }
@@ -285,6 +299,35 @@ impl Analysis {
             geometry: (self.system().clone(), equations.clone()),
         })
     }
+}
+
+/// At each equilibrium whose linearization failed, the decision in a regular chart when it
+/// sits at a pole of the coordinates (crate::chart).
+fn poles(
+    prepared: &Prepared,
+    search: &Search,
+    set: &EquilibriumSet,
+    linearized: &[Result<Linearized, LinearizeError>],
+) -> Vec<Option<AtPole>> {
+    let (_, equations) = &prepared.geometry;
+    let coordinates = equations.coordinates();
+    let spinning: Vec<(usize, f64)> = search
+        .steady
+        .iter()
+        .filter_map(|(q, rate)| Some((coordinates.iter().position(|c| c == q)?, *rate)))
+        .collect();
+    let at = |e: &mechanics::equilibria::Equilibrium| {
+        if search.steady.is_empty() {
+            let free = &prepared.rest.free;
+            crate::chart::at_pole(equations, &e.values, free, &prepared.values).map(AtPole::Rest)
+        } else {
+            crate::chart::spin_at_pole(equations, &e.values, &spinning, &prepared.values)
+                .map(AtPole::Spin)
+        }
+    };
+    let zip = set.equilibria.iter().zip(linearized);
+    zip.map(|(e, l)| l.as_ref().err().and_then(|_| at(e)))
+        .collect()
 }
 
 fn unknown(name: &str, known: &[String]) -> Error {

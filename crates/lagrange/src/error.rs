@@ -89,6 +89,9 @@ pub enum Error {
     /// Equilibria could not be looked for.
     #[error(transparent)]
     Equilibria(#[from] mechanics::equilibria::EquilibriumError),
+    /// A Floquet analysis of a time-periodic system could not be made.
+    #[error(transparent)]
+    Floquet(#[from] crate::floquet::FloquetError),
     /// A simulation could not be prepared.
     #[error(transparent)]
     Simulation(#[from] simulation::SimulationError),
@@ -304,6 +307,13 @@ impl Error {
             Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {
                 ErrorKind::Input
             }
+            Error::Floquet(
+                crate::FloquetError::NotPeriodic { .. }
+                | crate::FloquetError::Autonomous
+                | crate::FloquetError::NoCommonPeriod { .. }
+                | crate::FloquetError::BadPeriod { .. }
+                | crate::FloquetError::MissingValue { .. },
+            ) => ErrorKind::Input,
             Error::Inconsistent(_) | Error::Simulation(S::UnsolvedDerivative { .. }) => {
                 ErrorKind::Internal
             }

@@ -9,7 +9,7 @@
 use serde_json::Value;
 
 use crate::equilibria::{Deviations, Equilibria, EquilibriumSweep};
-use crate::{cas, report, Analysis, Error, Reactions, Solution};
+use crate::{cas, report, Analysis, Error, Floquet, Reactions, Solution};
 
 /// How a whole solution is written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -119,6 +119,15 @@ impl Written for Equilibria {
 }
 
 impl Written for EquilibriumSweep {
+    fn text(&self) -> String {
+        self.to_text()
+    }
+    fn json(&self) -> Value {
+        self.to_json()
+    }
+}
+
+impl Written for Floquet {
     fn text(&self) -> String {
         self.to_text()
     }

@@ -62,11 +62,13 @@
 
 mod analysis;
 pub mod assign;
+mod chart;
 pub mod csv;
 mod equilibria;
 mod error;
 pub mod expression;
 mod figure;
+mod floquet;
 mod formats;
 mod modes;
 mod output;
@@ -79,8 +81,10 @@ mod written;
 
 pub use analysis::{Analysis, Source};
 pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Range};
+pub use chart::{AtPole, PoleSpin, PoleStability};
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
+pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
 pub use output::{FileFormat, Output};
 pub use projection::ProjectedReaction;

@@ -5,6 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
+use mechanics::equilibria::EquilibriumError;
 use report::document::{Block, Document, Notation, Section};
 use report::solution_simulation::{simulation_section, RunEnd, RunReport};
 
@@ -88,6 +89,9 @@ impl Analysis {
                 let mut section = Section::new("Equilibria and their stability", 2);
                 section.paragraph(format!("Not analysed: {why}."));
                 document.sections.push(section);
+                if matches!(why, Error::Equilibria(EquilibriumError::TimeDependent)) {
+                    document.sections.push(self.floquet_part());
+                }
             }
         }
         // Before the simulation, whose one-sided contacts then reuse them.
@@ -230,6 +234,18 @@ impl Analysis {
             });
         }
         section.blocks.splice(0..0, blocks);
+    }
+
+    /// The "Floquet analysis" section of a model whose equations depend on time: about its
+    /// periodic motions when they are periodic, else why not.
+    fn floquet_part(&self) -> Section {
+        let found = self.floquet(&crate::FloquetOptions::default());
+        report::floquet::floquet_section(
+            found
+                .as_ref()
+                .map(|f| &f.results[..])
+                .map_err(ToString::to_string),
+        )
     }
 
     /// The "Simulation" section: the model's own settings, run once.

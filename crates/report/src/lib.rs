@@ -24,6 +24,7 @@ use mechanics::{Equations, System};
 use serde_json::{json, Value};
 
 pub mod equilibria;
+pub mod floquet;
 
 /// The JSON schema version written by [`eom_json`].
 pub const SCHEMA: u32 = 1;

@@ -22,8 +22,14 @@ pub fn run(
         steady: each(&options.steady, "--steady", |s| analysis.read_number(s))?,
         ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
     };
-    if let Some(sweep) = &options.sweep {
-        return run_sweep(path, &analysis, &search, sweep, options);
+    match options.sweep.as_slice() {
+        [] => {}
+        [sweep] => return run_sweep(path, &analysis, &search, sweep, options),
+        _ => {
+            return Err(Failure::input(
+                "--sweep takes one parameter here (two only with linearize --periodic)",
+            ))
+        }
     }
     if options.plot.is_some() {
         return Err(Failure::input(

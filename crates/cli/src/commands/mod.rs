@@ -7,6 +7,7 @@ pub mod draw;
 mod eom;
 mod equilibria;
 mod expression;
+mod linearize_periodic;
 mod reactions;
 pub mod simulate;
 mod solve;
@@ -33,6 +34,14 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
             options,
             equilibrium,
             initial,
+            periodic: Some(period),
+        } => linearize_periodic::run(&input, &options, equilibrium, &period, &initial),
+        Command::Linearize {
+            input,
+            options,
+            equilibrium,
+            initial,
+            periodic: None,
         } => equilibria::run(&input, &options, equilibrium, Some(&initial)),
         Command::Simulate(args) => simulate::run(&args),
         Command::Draw(args) => draw::run(&args),
