@@ -73,6 +73,7 @@ mod reactions;
 mod runs;
 mod simulate;
 mod solve;
+mod steady;
 mod written;
 
 pub use analysis::{Analysis, Source};
@@ -87,6 +88,7 @@ pub use simulate::{
     Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
+pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};
 pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;
