@@ -292,8 +292,8 @@ impl Analysis {
     }
 }
 
-/// The largest real part among the eigenvalues that are not zero (complex ones only, or real
-/// ones only).
+/// The largest real part among the complex eigenvalues, or among the real ones (the decoupled
+/// states' zeros are not among them).
 fn leading(lin: &SteadyLinearization, oscillatory: bool) -> Option<f64> {
     let scale = lin
         .eigenvalues
@@ -301,7 +301,7 @@ fn leading(lin: &SteadyLinearization, oscillatory: bool) -> Option<f64> {
         .fold(1.0_f64, |m, (re, im)| m.max(re.hypot(*im)));
     lin.eigenvalues
         .iter()
-        .filter(|(re, im)| re.hypot(*im) > 1e-9 * scale && (im.abs() > 1e-9 * scale) == oscillatory)
+        .filter(|(_, im)| (im.abs() > 1e-9 * scale) == oscillatory)
         .map(|(re, _)| *re)
         .reduce(f64::max)
 }

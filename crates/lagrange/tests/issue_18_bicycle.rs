@@ -20,7 +20,6 @@ fn table_2_eigenvalues_at_five_metres_per_second() {
     let mut a = bicycle();
     a.set_value("v", 5.0).expect("v is a parameter");
     let lin = a.steady_linearization().expect("the upright steady motion linearizes");
-    println!("{lin:#?}");
     let expected = [
         (-14.07838969279822, 0.0),
         (-0.77534188219585, 4.46486771378823),
@@ -34,7 +33,70 @@ fn table_2_eigenvalues_at_five_metres_per_second() {
             .any(|(r, i)| (r - re).abs() < 1e-10 && (i - im).abs() < 1e-10);
         assert!(near, "no eigenvalue {re} + {im} i in {:?}", lin.eigenvalues);
     }
-    // The fifth state is the forward speed, which the linear equations leave unchanged.
-    assert_eq!(lin.eigenvalues.len(), 5);
+    // The fifth state is the forward speed (the rear wheel's rate), which the linear
+    // equations leave unchanged and which changes nothing in them.
+    assert_eq!(lin.eigenvalues.len(), 4);
+    assert_eq!(lin.decoupled, ["thetaR_d"]);
     assert_eq!(lin.shape, ["phi", "delta"]);
+}
+
+fn assert_matrix(name: &str, got: &[Vec<f64>], expected: [[f64; 2]; 2], digits: f64) {
+    for i in 0..2 {
+        for j in 0..2 {
+            let e = expected[i][j];
+            assert!(
+                (got[i][j] - e).abs() <= digits,
+                "{name}[{i}][{j}] = {} where the paper prints {e}",
+                got[i][j]
+            );
+        }
+    }
+}
+
+#[test]
+fn canonical_matrices_equal_the_papers() {
+    let a = bicycle();
+    assert_eq!(a.steady_speed_parameter().as_deref(), Some("v"));
+    let form = a.canonical_form("v").expect("the canonical form at v = 5");
+    assert_eq!(form.coordinates, ["phi", "delta"]);
+    // Meijaard et al. (2007), equations (A 1)-(A 4), to the digits printed there.
+    let m = [[80.81722, 2.31941332208709], [2.31941332208709, 0.29784188199686]];
+    let c1 = [[0.0, 33.86641391492494], [-0.85035641456978, 1.68540397397560]];
+    let k0 = [[-80.95, -2.59951685249872], [-2.59951685249872, -0.80329488458618]];
+    let k2 = [[0.0, 76.59734589573222], [0.0, 2.65431523794604]];
+    assert_matrix("M", &form.mass, m, 1e-11);
+    assert_matrix("C1", &form.c1, c1, 1e-11);
+    assert_matrix("K0", &form.k0, k0, 1e-11);
+    assert_matrix("K2", &form.k2, k2, 1e-11);
+}
+
+#[test]
+fn sweep_finds_weave_capsize_and_bifurcation_speeds() {
+    let a = bicycle();
+    let sweep = a.steady_sweep("v", 0.0, 10.0, 101).expect("the sweep");
+    assert!(sweep.steps.iter().all(|(_, l)| l.is_ok()));
+    let changes = a.steady_crossings(&sweep).expect("the stability changes");
+    let find = |kind: ChangeKind| -> Vec<f64> {
+        changes.iter().filter(|c| c.kind == kind).map(|c| c.at).collect()
+    };
+    let (weave, capsize, bifurcation) = (
+        find(ChangeKind::Oscillatory),
+        find(ChangeKind::Real),
+        find(ChangeKind::Coalescence),
+    );
+    assert_eq!(weave.len(), 1, "{changes:?}");
+    assert_eq!(capsize.len(), 1, "{changes:?}");
+    assert!((weave[0] - 4.29238253634111).abs() < 1e-8, "weave at {}", weave[0]);
+    assert!((capsize[0] - 6.02426201538837).abs() < 1e-8, "capsize at {}", capsize[0]);
+    assert!(
+        bifurcation.iter().any(|v| (v - 0.68428307889246).abs() < 1e-8),
+        "bifurcation speed not among {bifurcation:?}"
+    );
+    // Stable between the weave and capsize speeds, unstable below and above.
+    for (v, lin) in &sweep.steps {
+        let lin = lin.as_ref().expect("linearized");
+        let leading = lin.eigenvalues.iter().map(|(re, _)| *re).fold(f64::MIN, f64::max);
+        let stable = leading < 1e-9;
+        assert_eq!(stable, *v > 4.2924 && *v < 6.0243, "v = {v}: {:?}", lin.eigenvalues);
+    }
 }

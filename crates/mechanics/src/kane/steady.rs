@@ -43,13 +43,19 @@ pub struct SteadyLinearization {
     pub rates: Vec<f64>,
     /// The state matrix of `(δq_S, δu)`.
     pub state_matrix: Vec<Vec<f64>>,
+    /// The states' names, in the matrix's order: the shape coordinates, then the speeds
+    /// (`phi_d`).
+    pub states: Vec<String>,
+    /// The states that no other state changes and that change none (their row and column
+    /// vanish): their zero eigenvalues are left out of [`SteadyLinearization::eigenvalues`].
+    pub decoupled: Vec<String>,
     /// `M_r` at the steady motion (speeds × speeds).
     pub mass: Vec<Vec<f64>>,
     /// `−∂f_r/∂u` (speeds × speeds).
     pub damping: Vec<Vec<f64>>,
     /// `−∂f_r/∂q_S` (speeds × shape).
     pub stiffness: Vec<Vec<f64>>,
-    /// The state matrix's eigenvalues `(re, im)`.
+    /// The eigenvalues `(re, im)` of the state matrix without its decoupled states.
     pub eigenvalues: Vec<(f64, f64)>,
 }
 

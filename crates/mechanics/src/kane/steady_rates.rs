@@ -105,8 +105,16 @@ impl KaneSystem {
         let state_matrix: Vec<Vec<f64>> = (0..s + p)
             .map(|i| columns.iter().map(|c| c[i]).collect())
             .collect();
-        let eigenvalues = numeric::eigen::eigenvalues(&state_matrix)
+        let coupled = coupled_states(&state_matrix);
+        let kept: Vec<Vec<f64>> = coupled
+            .iter()
+            .map(|i| coupled.iter().map(|j| state_matrix[*i][*j]).collect())
+            .collect();
+        let eigenvalues = numeric::eigen::eigenvalues(&kept)
             .map_err(|_| KaneError::Singular("the state matrix's eigenproblem"))?;
+        let mut states: Vec<String> = roles.shape.iter().map(|j| self.coordinates[*j].clone()).collect();
+        states.extend(roles.split.independent.iter().map(|j| format!("{}_d", self.coordinates[*j])));
+        let decoupled = (0..s + p).filter(|k| !coupled.contains(k)).map(|k| states[k].clone()).collect();
         let names = |idx: &[usize]| idx.iter().map(|j| self.coordinates[*j].clone()).collect();
         let cyclic: Vec<usize> = (0..q.len()).filter(|j| roles.cyclic[*j]).collect();
         let mut qd = vec![0.0; q.len()];
@@ -122,10 +130,27 @@ impl KaneSystem {
             configuration: q.to_vec(),
             rates: qd,
             state_matrix,
+            states,
+            decoupled,
             mass,
             damping,
             stiffness,
             eigenvalues,
         })
     }
+}
+
+/// The states that are coupled to others: a state whose row and column are zero (a conserved
+/// speed, such as a bicycle's forward speed at first order) adds an exact zero eigenvalue,
+/// which would hide a real eigenvalue passing through zero; it is left out of the eigenvalues.
+fn coupled_states(a: &[Vec<f64>]) -> Vec<usize> {
+    let scale = a.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let tiny = 1e-12 * scale;
+    (0..a.len())
+        .filter(|k| {
+            let row = a[*k].iter().any(|x| x.abs() > tiny);
+            let column = a.iter().any(|r| r[*k].abs() > tiny);
+            row || column
+        })
+        .collect()
 }
