@@ -74,6 +74,7 @@ mod runs;
 mod simulate;
 mod solve;
 mod steady;
+pub mod steady_print;
 mod written;
 
 pub use analysis::{Analysis, Source};

@@ -272,6 +272,22 @@ impl Analysis {
         })
     }
 
+    /// Whether `lagrange linearize` linearizes about a steady motion by Kane's method: the
+    /// system has velocity constraints (rolling, a blade) and the `initial` statement gives a
+    /// rate that is not zero (a motion rather than a rest state).
+    #[must_use]
+    pub fn describes_steady_motion(&self) -> bool {
+        let velocity = self.system().constraints().iter().any(|c| {
+            c.equations
+                .iter()
+                .any(|e| matches!(e, mechanics::ConstraintForm::Velocity(_)))
+        });
+        velocity
+            && self
+                .steady_motion()
+                .is_ok_and(|m| m.rates.iter().flatten().any(|r| *r != 0.0))
+    }
+
     /// The parameter the given steady rates change with (the speed), if exactly one does.
     #[must_use]
     pub fn steady_speed_parameter(&self) -> Option<String> {

@@ -23,6 +23,9 @@ pub fn run(
         ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
     };
     let as_json = options.format == EomFormat::Json;
+    if initial.is_some() && analysis.describes_steady_motion() {
+        return super::steady::run(path, &analysis, options);
+    }
     if let Some(sweep) = &options.sweep {
         return run_sweep(path, &analysis, &search, sweep, options);
     }

@@ -10,6 +10,7 @@ mod expression;
 mod reactions;
 pub mod simulate;
 mod solve;
+mod steady;
 
 use std::path::Path;
 
