@@ -100,3 +100,29 @@ fn sweep_finds_weave_capsize_and_bifurcation_speeds() {
         assert_eq!(stable, *v > 4.2924 && *v < 6.0243, "v = {v}: {:?}", lin.eigenvalues);
     }
 }
+
+#[test]
+fn state_matrix_equals_sympys_bicycle_test() {
+    // The lean and steer rows of the state matrix in (phi, delta, phi_d, delta_d) as SymPy's
+    // own bicycle test stores them (sympy/physics/mechanics/tests/test_kane3.py,
+    // test_bicycle, checked there to 1e-12 at v = 0..5).
+    let row_phi = |v: f64| {
+        [9.48977444677355, -0.891197738059089 * v * v - 0.571523173729245, -0.105522449805691 * v, -0.330515398992311 * v]
+    };
+    let row_delta = |v: f64| {
+        [11.7194768719633, -1.97171508499972 * v * v + 30.9087533932407, 3.67680523332152 * v, -3.08486552743311 * v]
+    };
+    let mut a = bicycle();
+    for v in [0.0, 1.0, 2.0, 3.0, 4.0, 5.0] {
+        a.set_value("v", v).expect("v is a parameter");
+        let lin = a.steady_linearization().expect("linearizes");
+        let at = |name: &str| lin.states.iter().position(|s| s == name).expect("a state");
+        let cols = [at("phi"), at("delta"), at("phi_d"), at("delta_d")];
+        for (state, expected) in [("phi_d", row_phi(v)), ("delta_d", row_delta(v))] {
+            let row = &lin.state_matrix[at(state)];
+            for (c, e) in cols.iter().zip(expected) {
+                assert!((row[*c] - e).abs() < 1e-11, "v = {v}, {state}: {} against {e}", row[*c]);
+            }
+        }
+    }
+}
