@@ -19,7 +19,7 @@ fn eigen_json(lin: &SteadyLinearization) -> Value {
     Value::Array(
         lin.eigenvalues
             .iter()
-            .map(|(re, im)| json!({ "re": re, "im": im }))
+            .map(|(re, im)| json!([re + 0.0, im + 0.0]))
             .collect(),
     )
 }
@@ -41,6 +41,7 @@ pub fn steady_json(
     canonical: Option<&CanonicalForm>,
 ) -> Value {
     let mut v = json!({
+        "schema": 1,
         "method": "kane",
         "steady_motion": {
             "configuration": named(coordinates, &lin.configuration, ""),
@@ -151,7 +152,7 @@ pub fn sweep_json(sweep: &SteadySweep, changes: &[StabilityChange]) -> Value {
         .iter()
         .map(|c| json!({ "at": c.at, "kind": kind_name(c.kind) }))
         .collect();
-    json!({ "parameter": sweep.parameter, "steps": steps, "changes": changes })
+    json!({ "schema": 1, "method": "kane", "parameter": sweep.parameter, "steps": steps, "changes": changes })
 }
 
 /// A sweep and its stability changes as text.

@@ -68,6 +68,27 @@ pub struct Reduced<T> {
     pub forcing: Vec<T>,
     /// All the rates `q̇ = T u + s`.
     pub rates: Vec<T>,
+    /// `T`: the rates per unit of each speed (n×p).
+    pub speed_matrix: Vec<Vec<T>>,
+    /// The accelerations the constraints need when `u̇ = 0`: `q̈ = T u̇ + bias`.
+    pub bias: Vec<T>,
+}
+
+impl<T: Scalar> Reduced<T> {
+    /// The accelerations of all coordinates, `q̈ = T M_r⁻¹ f_r + bias`.
+    ///
+    /// # Errors
+    /// [`KaneError::Singular`] when `M_r` is.
+    pub fn accelerations(&self) -> Result<Vec<T>, KaneError> {
+        let ud = solve(self.mass.clone(), vec![self.forcing.clone()])
+            .ok_or(KaneError::Singular("the reduced mass matrix"))?;
+        Ok(self
+            .speed_matrix
+            .iter()
+            .zip(&self.bias)
+            .map(|(row, b)| row.iter().zip(&ud[0]).fold(*b, |acc, (t, u)| acc + *t * *u))
+            .collect())
+    }
 }
 
 /// The geometry's values and their derivatives in each coordinate's direction.
@@ -342,6 +363,8 @@ impl KaneSystem {
             mass: mass_r,
             forcing,
             rates: qd,
+            speed_matrix: tm,
+            bias: qdd,
         })
     }
 
