@@ -237,7 +237,9 @@ impl Analysis {
             .position(|n| n == speed)
             .map(|k| values[k])
             .filter(|v| *v != 0.0)
-            .ok_or_else(|| Error::NotAvailable("the canonical form needs a nonzero speed".into()))?;
+            .ok_or_else(|| {
+                Error::NotAvailable("the canonical form needs a nonzero speed".into())
+            })?;
         let g = gravity(self, &names, &values);
         let moving = self.steady_linearization()?;
         let still = self.linearize_at(&system, speed, 0.0)?;
@@ -259,9 +261,8 @@ impl Analysis {
         let mass = pick(&|i, j| moving.mass[rows[i]][rows[j]]);
         let c1 = pick(&|i, j| moving.damping[rows[i]][rows[j]] / v);
         let k0 = pick(&|i, j| still.stiffness[rows[i]][j] / g);
-        let k2 = pick(&|i, j| {
-            (moving.stiffness[rows[i]][j] - still.stiffness[rows[i]][j]) / (v * v)
-        });
+        let k2 =
+            pick(&|i, j| (moving.stiffness[rows[i]][j] - still.stiffness[rows[i]][j]) / (v * v));
         Ok(CanonicalForm {
             coordinates: moving.shape.clone(),
             speed: speed.to_string(),

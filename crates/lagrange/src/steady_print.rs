@@ -102,20 +102,40 @@ pub fn steady_text(
         .collect();
     let mut out = String::from("steady motion (Kane's method)\n");
     out.push_str(&format!("  rates: {}\n", rates.join(", ")));
-    out.push_str(&format!("  cyclic coordinates: {}\n", lin.cyclic.join(", ")));
-    out.push_str(&format!("  held by holonomic constraints: {}\n", lin.holonomic.join(", ")));
-    out.push_str(&format!("  independent speeds: {}\n", lin.speeds.join(", ")));
+    out.push_str(&format!(
+        "  cyclic coordinates: {}\n",
+        lin.cyclic.join(", ")
+    ));
+    out.push_str(&format!(
+        "  held by holonomic constraints: {}\n",
+        lin.holonomic.join(", ")
+    ));
+    out.push_str(&format!(
+        "  independent speeds: {}\n",
+        lin.speeds.join(", ")
+    ));
     out.push_str(&format!("  states: {}", lin.states.join(", ")));
     if !lin.decoupled.is_empty() {
-        out.push_str(&format!(" ({} decoupled: a zero eigenvalue)", lin.decoupled.join(", ")));
+        out.push_str(&format!(
+            " ({} decoupled: a zero eigenvalue)",
+            lin.decoupled.join(", ")
+        ));
     }
     out.push_str("\n\n");
     out.push_str(&matrix_text("A (state matrix)", &lin.state_matrix));
     out.push_str("\neigenvalues:\n");
     for (re, im) in &lin.eigenvalues {
-        out.push_str(&format!("  {re:.14} {} {:.14} i\n", if *im < 0.0 { '-' } else { '+' }, im.abs()));
+        out.push_str(&format!(
+            "  {re:.14} {} {:.14} i\n",
+            if *im < 0.0 { '-' } else { '+' },
+            im.abs()
+        ));
     }
-    out.push_str(if is_stable(lin) { "stable\n" } else { "unstable\n" });
+    out.push_str(if is_stable(lin) {
+        "stable\n"
+    } else {
+        "unstable\n"
+    });
     if let Some(c) = canonical {
         out.push_str(&format!(
             "\ncanonical form in ({}): M q'' + {v} C1 q' + (g K0 + {v}^2 K2) q = 0\n",
@@ -144,7 +164,9 @@ pub fn sweep_json(sweep: &SteadySweep, changes: &[StabilityChange]) -> Value {
         .steps
         .iter()
         .map(|(x, lin)| match lin {
-            Ok(lin) => json!({ "value": x, "eigenvalues": eigen_json(lin), "stable": is_stable(lin) }),
+            Ok(lin) => {
+                json!({ "value": x, "eigenvalues": eigen_json(lin), "stable": is_stable(lin) })
+            }
             Err(e) => json!({ "value": x, "error": e.to_string() }),
         })
         .collect();
@@ -169,7 +191,11 @@ pub fn sweep_text(sweep: &SteadySweep, changes: &[StabilityChange]) -> String {
                         if *im == 0.0 {
                             format!("{re:.6}")
                         } else {
-                            format!("{re:.6}{}{:.6}i", if *im < 0.0 { '-' } else { '+' }, im.abs())
+                            format!(
+                                "{re:.6}{}{:.6}i",
+                                if *im < 0.0 { '-' } else { '+' },
+                                im.abs()
+                            )
                         }
                     })
                     .collect();
@@ -181,7 +207,12 @@ pub fn sweep_text(sweep: &SteadySweep, changes: &[StabilityChange]) -> String {
     }
     out.push_str("\nstability changes:\n");
     for c in changes {
-        out.push_str(&format!("  {} = {:.14}: {}\n", sweep.parameter, c.at, kind_name(c.kind)));
+        out.push_str(&format!(
+            "  {} = {:.14}: {}\n",
+            sweep.parameter,
+            c.at,
+            kind_name(c.kind)
+        ));
     }
     out
 }

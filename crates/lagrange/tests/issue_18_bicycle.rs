@@ -19,7 +19,9 @@ fn bicycle() -> Analysis {
 fn table_2_eigenvalues_at_five_metres_per_second() {
     let mut a = bicycle();
     a.set_value("v", 5.0).expect("v is a parameter");
-    let lin = a.steady_linearization().expect("the upright steady motion linearizes");
+    let lin = a
+        .steady_linearization()
+        .expect("the upright steady motion linearizes");
     let expected = [
         (-14.07838969279822, 0.0),
         (-0.77534188219585, 4.46486771378823),
@@ -60,9 +62,18 @@ fn canonical_matrices_equal_the_papers() {
     let form = a.canonical_form("v").expect("the canonical form at v = 5");
     assert_eq!(form.coordinates, ["phi", "delta"]);
     // Meijaard et al. (2007), equations (A 1)-(A 4), to the digits printed there.
-    let m = [[80.81722, 2.31941332208709], [2.31941332208709, 0.29784188199686]];
-    let c1 = [[0.0, 33.86641391492494], [-0.85035641456978, 1.68540397397560]];
-    let k0 = [[-80.95, -2.59951685249872], [-2.59951685249872, -0.80329488458618]];
+    let m = [
+        [80.81722, 2.31941332208709],
+        [2.31941332208709, 0.29784188199686],
+    ];
+    let c1 = [
+        [0.0, 33.86641391492494],
+        [-0.85035641456978, 1.68540397397560],
+    ];
+    let k0 = [
+        [-80.95, -2.59951685249872],
+        [-2.59951685249872, -0.80329488458618],
+    ];
     let k2 = [[0.0, 76.59734589573222], [0.0, 2.65431523794604]];
     assert_matrix("M", &form.mass, m, 1e-11);
     assert_matrix("C1", &form.c1, c1, 1e-11);
@@ -77,7 +88,11 @@ fn sweep_finds_weave_capsize_and_bifurcation_speeds() {
     assert!(sweep.steps.iter().all(|(_, l)| l.is_ok()));
     let changes = a.steady_crossings(&sweep).expect("the stability changes");
     let find = |kind: ChangeKind| -> Vec<f64> {
-        changes.iter().filter(|c| c.kind == kind).map(|c| c.at).collect()
+        changes
+            .iter()
+            .filter(|c| c.kind == kind)
+            .map(|c| c.at)
+            .collect()
     };
     let (weave, capsize, bifurcation) = (
         find(ChangeKind::Oscillatory),
@@ -86,18 +101,37 @@ fn sweep_finds_weave_capsize_and_bifurcation_speeds() {
     );
     assert_eq!(weave.len(), 1, "{changes:?}");
     assert_eq!(capsize.len(), 1, "{changes:?}");
-    assert!((weave[0] - 4.29238253634111).abs() < 1e-8, "weave at {}", weave[0]);
-    assert!((capsize[0] - 6.02426201538837).abs() < 1e-8, "capsize at {}", capsize[0]);
     assert!(
-        bifurcation.iter().any(|v| (v - 0.68428307889246).abs() < 1e-8),
+        (weave[0] - 4.29238253634111).abs() < 1e-8,
+        "weave at {}",
+        weave[0]
+    );
+    assert!(
+        (capsize[0] - 6.02426201538837).abs() < 1e-8,
+        "capsize at {}",
+        capsize[0]
+    );
+    assert!(
+        bifurcation
+            .iter()
+            .any(|v| (v - 0.68428307889246).abs() < 1e-8),
         "bifurcation speed not among {bifurcation:?}"
     );
     // Stable between the weave and capsize speeds, unstable below and above.
     for (v, lin) in &sweep.steps {
         let lin = lin.as_ref().expect("linearized");
-        let leading = lin.eigenvalues.iter().map(|(re, _)| *re).fold(f64::MIN, f64::max);
+        let leading = lin
+            .eigenvalues
+            .iter()
+            .map(|(re, _)| *re)
+            .fold(f64::MIN, f64::max);
         let stable = leading < 1e-9;
-        assert_eq!(stable, *v > 4.2924 && *v < 6.0243, "v = {v}: {:?}", lin.eigenvalues);
+        assert_eq!(
+            stable,
+            *v > 4.2924 && *v < 6.0243,
+            "v = {v}: {:?}",
+            lin.eigenvalues
+        );
     }
 }
 
@@ -107,10 +141,20 @@ fn state_matrix_equals_sympys_bicycle_test() {
     // own bicycle test stores them (sympy/physics/mechanics/tests/test_kane3.py,
     // test_bicycle, checked there to 1e-12 at v = 0..5).
     let row_phi = |v: f64| {
-        [9.48977444677355, -0.891197738059089 * v * v - 0.571523173729245, -0.105522449805691 * v, -0.330515398992311 * v]
+        [
+            9.48977444677355,
+            -0.891197738059089 * v * v - 0.571523173729245,
+            -0.105522449805691 * v,
+            -0.330515398992311 * v,
+        ]
     };
     let row_delta = |v: f64| {
-        [11.7194768719633, -1.97171508499972 * v * v + 30.9087533932407, 3.67680523332152 * v, -3.08486552743311 * v]
+        [
+            11.7194768719633,
+            -1.97171508499972 * v * v + 30.9087533932407,
+            3.67680523332152 * v,
+            -3.08486552743311 * v,
+        ]
     };
     let mut a = bicycle();
     for v in [0.0, 1.0, 2.0, 3.0, 4.0, 5.0] {
@@ -121,7 +165,11 @@ fn state_matrix_equals_sympys_bicycle_test() {
         for (state, expected) in [("phi_d", row_phi(v)), ("delta_d", row_delta(v))] {
             let row = &lin.state_matrix[at(state)];
             for (c, e) in cols.iter().zip(expected) {
-                assert!((row[*c] - e).abs() < 1e-11, "v = {v}, {state}: {} against {e}", row[*c]);
+                assert!(
+                    (row[*c] - e).abs() < 1e-11,
+                    "v = {v}, {state}: {} against {e}",
+                    row[*c]
+                );
             }
         }
     }

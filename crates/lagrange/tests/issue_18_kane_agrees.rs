@@ -14,7 +14,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
     }
 }
@@ -41,24 +44,43 @@ fn lagrange_accelerations(a: &Analysis, env: &dyn Fn(Symbol) -> Option<f64>) -> 
         }
         rhs[n + k] = num(&eq.constraint_rhs()[k])?;
     }
-    let x = lagrange::numeric::eigen::solve(&big, &rhs.iter().map(|r| vec![*r]).collect::<Vec<_>>()).ok()?;
+    let x =
+        lagrange::numeric::eigen::solve(&big, &rhs.iter().map(|r| vec![*r]).collect::<Vec<_>>())
+            .ok()?;
     Some(x.iter().take(n).map(|r| r[0]).collect())
 }
 
 #[test]
 fn kane_and_lagrange_agree_on_the_examples() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    let mut files: Vec<_> = std::fs::read_dir(&dir).expect("examples").flatten().map(|e| e.path()).collect();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("examples")
+        .flatten()
+        .map(|e| e.path())
+        .collect();
     files.sort();
     let mut checked = Vec::new();
     let mut rng = Lcg(18);
-    for path in files.iter().filter(|p| p.extension().is_some_and(|e| e == "lag")) {
-        let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    for path in files
+        .iter()
+        .filter(|p| p.extension().is_some_and(|e| e == "lag"))
+    {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
         if name.starts_with("whipple") {
             continue; // Lagrange's route does not finish on it (the reason for Kane's)
         }
-        let Ok(a) = Analysis::from_file(path) else { continue };
-        let holonomic = a.system().constraints().iter().flat_map(|c| &c.equations).any(|e| matches!(e, ConstraintForm::Holonomic(_)));
+        let Ok(a) = Analysis::from_file(path) else {
+            continue;
+        };
+        let holonomic = a
+            .system()
+            .constraints()
+            .iter()
+            .flat_map(|c| &c.equations)
+            .any(|e| matches!(e, ConstraintForm::Holonomic(_)));
         if holonomic || !a.timed_inputs().is_empty() || a.equations().is_err() {
             continue;
         }
@@ -70,9 +92,13 @@ fn kane_and_lagrange_agree_on_the_examples() {
             let q: Vec<f64> = (0..n).map(|_| rng.next()).collect();
             let t = 0.3;
             let none = vec![false; n];
-            let split = kane.split(&q, t, &values, &none, &vec![true; n]).expect("a split");
+            let split = kane
+                .split(&q, t, &values, &none, &vec![true; n])
+                .expect("a split");
             let u: Vec<f64> = split.independent.iter().map(|_| rng.next()).collect();
-            let r = kane.reduced(&split, &q, &u, t, &values).expect("Kane's equations");
+            let r = kane
+                .reduced(&split, &q, &u, t, &values)
+                .expect("Kane's equations");
             let qdd = r.accelerations().expect("accelerations");
             let env = |s: Symbol| -> Option<f64> {
                 if s.kind() == SymbolKind::Time {
@@ -92,7 +118,10 @@ fn kane_and_lagrange_agree_on_the_examples() {
             };
             let eq = a.equations().expect("derived");
             for (k, c) in eq.coordinates().iter().enumerate() {
-                let j = coordinates.iter().position(|x| x == c).expect("same coordinates");
+                let j = coordinates
+                    .iter()
+                    .position(|x| x == c)
+                    .expect("same coordinates");
                 let scale = 1.0 + lagrange[k].abs();
                 assert!(
                     (qdd[j] - lagrange[k]).abs() < 1e-9 * scale,
@@ -105,7 +134,15 @@ fn kane_and_lagrange_agree_on_the_examples() {
         checked.push(name);
     }
     println!("checked: {checked:?}");
-    for expected in ["double-pendulum.lag", "knife-edge.lag", "rolling-disk-incline.lag", "heavy-symmetric-top.lag"] {
-        assert!(checked.iter().any(|c| c == expected), "{expected} was not checked: {checked:?}");
+    for expected in [
+        "double-pendulum.lag",
+        "knife-edge.lag",
+        "rolling-disk-incline.lag",
+        "heavy-symmetric-top.lag",
+    ] {
+        assert!(
+            checked.iter().any(|c| c == expected),
+            "{expected} was not checked: {checked:?}"
+        );
     }
 }

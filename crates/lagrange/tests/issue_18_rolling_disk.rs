@@ -30,9 +30,14 @@ initial x' = v, psi' = 0
 /// The largest real part of the linearization's eigenvalues at speed `v`.
 fn leading(a: &mut Analysis, v: f64) -> f64 {
     a.set_value("v", v).expect("v is a parameter");
-    let lin = a.steady_linearization().expect("upright rolling linearizes");
+    let lin = a
+        .steady_linearization()
+        .expect("upright rolling linearizes");
     assert_eq!(lin.shape, ["phi"]);
-    lin.eigenvalues.iter().map(|(re, _)| *re).fold(f64::MIN, f64::max)
+    lin.eigenvalues
+        .iter()
+        .map(|(re, _)| *re)
+        .fold(f64::MIN, f64::max)
 }
 
 #[test]
@@ -42,7 +47,13 @@ fn upright_disk_is_stable_above_the_square_root_of_g_r_over_three() {
         let critical = (g * radius / 3.0).sqrt();
         let below = leading(&mut a, 0.98 * critical);
         let above = leading(&mut a, 1.02 * critical);
-        assert!(below > 1e-3 * (g / radius).sqrt(), "R = {radius}: {below} below the critical speed");
-        assert!(above.abs() < 1e-9 * (g / radius).sqrt(), "R = {radius}: {above} above it");
+        assert!(
+            below > 1e-3 * (g / radius).sqrt(),
+            "R = {radius}: {below} below the critical speed"
+        );
+        assert!(
+            above.abs() < 1e-9 * (g / radius).sqrt(),
+            "R = {radius}: {above} above it"
+        );
     }
 }

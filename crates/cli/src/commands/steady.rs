@@ -13,7 +13,11 @@ use crate::args::{EomFormat, EquilibriumOptions};
 use crate::exit::{println, Exit, Failure};
 
 /// Prints the steady linearization, or the sweep asked for.
-pub fn run(path: &Path, analysis: &Analysis, options: &EquilibriumOptions) -> Result<Exit, Failure> {
+pub fn run(
+    path: &Path,
+    analysis: &Analysis,
+    options: &EquilibriumOptions,
+) -> Result<Exit, Failure> {
     let as_json = options.format == EomFormat::Json;
     if let Some(sweep) = &options.sweep {
         let range = analysis

@@ -232,9 +232,12 @@ impl KaneSystem {
         let mut by_coordinate = Vec::with_capacity(n);
         let mut value = Vec::new();
         for j in 0..n {
-            let out = self
-                .geometry
-                .eval(&self.variables(&seeded(q, j), &rates, Dual::constant_of(t), &vals));
+            let out = self.geometry.eval(&self.variables(
+                &seeded(q, j),
+                &rates,
+                Dual::constant_of(t),
+                &vals,
+            ));
             if j == 0 {
                 value = out.iter().map(|x| x.re).collect();
             }
@@ -251,12 +254,7 @@ impl KaneSystem {
 
     /// The full constraint rows `A` (holonomic rows `∂f/∂q`, then velocity rows) and `b`
     /// (`∂f/∂t`, then the velocity constraints at zero rates).
-    pub fn constraint_rows<T: Scalar>(
-        &self,
-        q: &[T],
-        t: T,
-        values: &[T],
-    ) -> (Vec<Vec<T>>, Vec<T>) {
+    pub fn constraint_rows<T: Scalar>(&self, q: &[T], t: T, values: &[T]) -> (Vec<Vec<T>>, Vec<T>) {
         let n = q.len();
         let zero_t = T::constant(0.0);
         let mut a = vec![vec![zero_t; n]; self.holonomic + self.velocity];
@@ -271,9 +269,12 @@ impl KaneSystem {
                 a[k][j] = x.eps;
             }
             let rates = seeded(&vec![zero_t; n], j);
-            let c = self
-                .rates
-                .eval(&self.variables(&lift(q), &rates, Dual::constant_of(t), &lift(values)));
+            let c = self.rates.eval(&self.variables(
+                &lift(q),
+                &rates,
+                Dual::constant_of(t),
+                &lift(values),
+            ));
             for k in 0..self.velocity {
                 a[self.holonomic + k][j] = c[k].eps;
                 b[self.holonomic + k] = c[k].re;
@@ -405,7 +406,10 @@ impl KaneSystem {
             .zip(qd)
             .map(|(x, v)| Dual::new(Dual::new(*x, *v), Dual::new(*v, z)))
             .collect();
-        let trate: Vec<Dual<Dual<T>>> = qd.iter().map(|v| Dual::constant_of(Dual::constant_of(*v))).collect();
+        let trate: Vec<Dual<Dual<T>>> = qd
+            .iter()
+            .map(|v| Dual::constant_of(Dual::constant_of(*v)))
+            .collect();
         let tt = Dual::new(Dual::new(t, one), Dual::new(one, z));
         let tv: Vec<Dual<Dual<T>>> = values
             .iter()
@@ -432,9 +436,12 @@ impl KaneSystem {
             return out;
         }
         for (j, slot) in out.iter_mut().enumerate() {
-            let c = self
-                .rates
-                .eval(&self.variables(&lift(q), &seeded(qd, j), Dual::constant_of(t), &lift(values)));
+            let c = self.rates.eval(&self.variables(
+                &lift(q),
+                &seeded(qd, j),
+                Dual::constant_of(t),
+                &lift(values),
+            ));
             *slot = c[self.velocity..]
                 .iter()
                 .fold(T::constant(0.0), |acc, x| acc + x.eps);

@@ -60,7 +60,11 @@ impl KaneSystem {
         let mut m = vec![vec![zero; n]; n];
         for b in 0..self.bodies {
             let o = b * BODY;
-            let (mass, r, inertia) = (geo.value[o], mat(&geo.value, o + 4), mat(&geo.value, o + 13));
+            let (mass, r, inertia) = (
+                geo.value[o],
+                mat(&geo.value, o + 4),
+                mat(&geo.value, o + 13),
+            );
             let jv: Vec<V3<T>> = (0..n).map(|j| v3(&geo.by_coordinate[j], o + 1)).collect();
             let om: Vec<V3<T>> = (0..n).map(|j| self.omega_partial(geo, b, j)).collect();
             let iom: Vec<V3<T>> = om.iter().map(|w| inertia_times(&r, &inertia, w)).collect();
@@ -96,7 +100,11 @@ impl KaneSystem {
         let mut e: Vec<T> = damping.iter().map(|d| -*d).collect();
         for b in 0..self.bodies {
             let o = b * BODY;
-            let (mass, r, inertia) = (geo.value[o], mat(&geo.value, o + 4), mat(&geo.value, o + 13));
+            let (mass, r, inertia) = (
+                geo.value[o],
+                mat(&geo.value, o + 4),
+                mat(&geo.value, o + 13),
+            );
             let acc: V3<T> = [0, 1, 2].map(|i| jet[o + 1 + i].eps.eps);
             let rd = [0, 1, 2].map(|i| [0, 1, 2].map(|k| jet[o + 4 + 3 * i + k].re.eps));
             let rdd = [0, 1, 2].map(|i| [0, 1, 2].map(|k| jet[o + 4 + 3 * i + k].eps.eps));

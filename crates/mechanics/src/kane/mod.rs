@@ -55,7 +55,9 @@ pub enum KaneError {
     #[error("{0} is singular at this state")]
     Singular(&'static str),
     /// A holonomic constraint that cannot be satisfied near the given configuration.
-    #[error("the holonomic constraints have no solution near the given configuration (residual {0:e})")]
+    #[error(
+        "the holonomic constraints have no solution near the given configuration (residual {0:e})"
+    )]
     NoConfiguration(f64),
     /// The given motion is not steady.
     #[error("the motion is not steady: the speeds change at the rate {0:e}")]

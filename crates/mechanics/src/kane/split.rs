@@ -50,7 +50,9 @@ impl KaneSystem {
         }
         let independent: Vec<usize> = (0..n).filter(|c| !used_cols[*c]).collect();
         if independent.is_empty() {
-            return Err(KaneError::Singular("the constraint matrix (no speed is free)"));
+            return Err(KaneError::Singular(
+                "the constraint matrix (no speed is free)",
+            ));
         }
         Ok(SpeedSplit {
             independent,

@@ -145,7 +145,12 @@ impl KaneSystem {
             .filter(|(r, _)| **r < self.holonomic)
             .map(|(_, c)| *c)
             .collect();
-        let rows: Vec<usize> = split.rows.iter().copied().filter(|r| *r < self.holonomic).collect();
+        let rows: Vec<usize> = split
+            .rows
+            .iter()
+            .copied()
+            .filter(|r| *r < self.holonomic)
+            .collect();
         let mut q: Vec<f64> = q0
             .iter()
             .enumerate()

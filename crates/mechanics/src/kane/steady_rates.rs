@@ -37,7 +37,12 @@ impl KaneSystem {
             .collect();
         let normal: Vec<Vec<f64>> = unknown
             .iter()
-            .map(|i| unknown.iter().map(|k| a.iter().map(|row| row[*i] * row[*k]).sum()).collect())
+            .map(|i| {
+                unknown
+                    .iter()
+                    .map(|k| a.iter().map(|row| row[*i] * row[*k]).sum())
+                    .collect()
+            })
             .collect();
         let projected: Vec<f64> = unknown
             .iter()
@@ -112,9 +117,22 @@ impl KaneSystem {
             .collect();
         let eigenvalues = numeric::eigen::eigenvalues(&kept)
             .map_err(|_| KaneError::Singular("the state matrix's eigenproblem"))?;
-        let mut states: Vec<String> = roles.shape.iter().map(|j| self.coordinates[*j].clone()).collect();
-        states.extend(roles.split.independent.iter().map(|j| format!("{}_d", self.coordinates[*j])));
-        let decoupled = (0..s + p).filter(|k| !coupled.contains(k)).map(|k| states[k].clone()).collect();
+        let mut states: Vec<String> = roles
+            .shape
+            .iter()
+            .map(|j| self.coordinates[*j].clone())
+            .collect();
+        states.extend(
+            roles
+                .split
+                .independent
+                .iter()
+                .map(|j| format!("{}_d", self.coordinates[*j])),
+        );
+        let decoupled = (0..s + p)
+            .filter(|k| !coupled.contains(k))
+            .map(|k| states[k].clone())
+            .collect();
         let names = |idx: &[usize]| idx.iter().map(|j| self.coordinates[*j].clone()).collect();
         let cyclic: Vec<usize> = (0..q.len()).filter(|j| roles.cyclic[*j]).collect();
         let mut qd = vec![0.0; q.len()];
