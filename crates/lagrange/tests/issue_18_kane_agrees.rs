@@ -30,15 +30,15 @@ fn lagrange_accelerations(a: &Analysis, env: &dyn Fn(Symbol) -> Option<f64>) -> 
     let num = |e: &lagrange::cas::Expr| e.eval(env).ok();
     let mut big = vec![vec![0.0; n + m]; n + m];
     let mut rhs = vec![0.0; n + m];
-    for i in 0..n {
-        for j in 0..n {
-            big[i][j] = num(&eq.mass_matrix()[i][j])?;
+    for (i, row) in eq.mass_matrix().iter().enumerate() {
+        for (j, e) in row.iter().enumerate() {
+            big[i][j] = num(e)?;
         }
         rhs[i] = num(&eq.forcing()[i])?;
     }
-    for k in 0..m {
-        for j in 0..n {
-            let x = num(&eq.constraint_matrix()[k][j])?;
+    for (k, row) in eq.constraint_matrix().iter().enumerate() {
+        for (j, e) in row.iter().enumerate() {
+            let x = num(e)?;
             big[n + k][j] = x;
             big[j][n + k] = x;
         }

@@ -263,7 +263,8 @@ impl KaneSystem {
         for (k, x) in dt.iter().enumerate() {
             b[k] = x.eps;
         }
-        for j in 0..n {
+        // One column of `A` per coordinate, from the derivative along it.
+        for (j, _) in q.iter().enumerate() {
             let d = self.holonomic_values(&seeded(q, j), Dual::constant_of(t), &lift(values));
             for (k, x) in d.iter().enumerate() {
                 a[k][j] = x.eps;
@@ -275,9 +276,9 @@ impl KaneSystem {
                 Dual::constant_of(t),
                 &lift(values),
             ));
-            for k in 0..self.velocity {
-                a[self.holonomic + k][j] = c[k].eps;
-                b[self.holonomic + k] = c[k].re;
+            for (k, ck) in c.iter().take(self.velocity).enumerate() {
+                a[self.holonomic + k][j] = ck.eps;
+                b[self.holonomic + k] = ck.re;
             }
         }
         (a, b)

@@ -128,8 +128,8 @@ impl KaneSystem {
                 *ej = *ej + dot(&net, &v3(&geo.by_coordinate[j], o + 1));
             }
         }
-        for j in 0..n {
-            e[j] = e[j] + self.load_force(geo, j);
+        for (j, ej) in e.iter_mut().enumerate().take(n) {
+            *ej = *ej + self.load_force(geo, j);
         }
         e
     }

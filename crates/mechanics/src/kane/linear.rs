@@ -28,11 +28,13 @@ pub fn solve<T: Scalar>(mut a: Vec<Vec<T>>, mut rhs: Vec<Vec<T>>) -> Option<Vec<
         for r in &mut rhs {
             r.swap(col, pivot);
         }
-        for row in col + 1..n {
-            let f = a[row][col] / a[col][col];
-            for k in col..n {
-                let d = f * a[col][k];
-                a[row][k] = a[row][k] - d;
+        let (upper, lower) = a.split_at_mut(col + 1);
+        let pivot_row = &upper[col];
+        for (offset, target) in lower.iter_mut().enumerate() {
+            let row = col + 1 + offset;
+            let f = target[col] / pivot_row[col];
+            for (x, p) in target.iter_mut().zip(pivot_row).skip(col) {
+                *x = *x - f * *p;
             }
             for r in &mut rhs {
                 let d = f * r[col];

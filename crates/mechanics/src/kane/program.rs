@@ -57,6 +57,11 @@ impl Variables {
         2 * self.coordinates.len() + 1 + self.values.len()
     }
 
+    /// Never: time is always a variable.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
     fn slot(&self, name: &str, kind: SymbolKind) -> Result<usize, KaneError> {
         let n = self.coordinates.len();
         let unknown = || KaneError::UnknownSymbol(name.to_string());
@@ -119,6 +124,11 @@ impl Program {
     /// The number of operations (the size of the graph).
     pub fn len(&self) -> usize {
         self.ops.len()
+    }
+
+    /// Whether the program has no operation (no outputs).
+    pub fn is_empty(&self) -> bool {
+        self.ops.is_empty()
     }
 
     /// The outputs at `vars` (one value per variable slot).

@@ -21,9 +21,9 @@ impl KaneSystem {
         let n = q.len();
         let mut qd = vec![0.0; n];
         let mut unknown = Vec::new();
-        for j in 0..n {
+        for (j, rate) in qd.iter_mut().enumerate() {
             match motion.rates.get(j).copied().flatten() {
-                Some(v) if roles.cyclic[j] || v == 0.0 => qd[j] = v,
+                Some(v) if roles.cyclic[j] || v == 0.0 => *rate = v,
                 Some(_) => return Err(KaneError::MovingShape(self.coordinates[j].clone())),
                 None if roles.cyclic[j] || roles.holonomic.contains(&j) => unknown.push(j),
                 None => {}
