@@ -2,7 +2,7 @@
 //! eliminated through dependent speeds, the reduced equations `M_r u̇ = f_r`, and their
 //! linearization about a steady motion.
 //!
-//! Nothing here builds the normal form of an equation. The [`System`]'s expressions (positions,
+//! Nothing here builds the normal form of an equation. The [`System`](crate::System)'s expressions (positions,
 //! rotation matrices, constraints) are hash-consed graphs; they become one flat [`Program`]
 //! (each shared sub-expression one slot), evaluated with dual numbers for exact derivatives:
 //! velocities and accelerations as Taylor coefficients in time, partial velocities as
