@@ -472,6 +472,15 @@ impl Analysis {
         Ok(state)
     }
 
+    /// The coordinates whose rates were set since the model was read.
+    pub(crate) fn initial_rates_set(&self) -> Vec<String> {
+        self.initial
+            .iter()
+            .filter(|(_, rate, _)| *rate)
+            .map(|(q, _, _)| q.clone())
+            .collect()
+    }
+
     pub(crate) fn initial_value(&self, q: &str, rate: bool) -> Result<f64, Error> {
         if let Some((_, _, v)) = self.initial.iter().find(|(c, r, _)| c == q && *r == rate) {
             return Ok(*v);

@@ -83,6 +83,9 @@ pub enum Error {
     /// Constraints that contradict or restate one another.
     #[error(transparent)]
     Constraints(#[from] mechanics::ConstraintConflict),
+    /// Kane's method or a steady motion failed.
+    #[error(transparent)]
+    Kane(#[from] mechanics::kane::KaneError),
     /// The reactions could not be derived.
     #[error(transparent)]
     Reactions(#[from] mechanics::ReactionError),
@@ -304,6 +307,7 @@ impl Error {
                 | S::BeyondLimit { .. },
             ) => ErrorKind::Input,
             Error::Reactions(mechanics::ReactionError::UnknownConstraint(_)) => ErrorKind::Input,
+            Error::Kane(e) if e.is_input() => ErrorKind::Input,
             Error::Equilibria(mechanics::equilibria::EquilibriumError::MissingValue { .. }) => {
                 ErrorKind::Input
             }

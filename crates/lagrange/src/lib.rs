@@ -77,6 +77,8 @@ mod reactions;
 mod runs;
 mod simulate;
 mod solve;
+mod steady;
+pub mod steady_print;
 mod written;
 
 pub use analysis::{Analysis, Source};
@@ -95,6 +97,7 @@ pub use simulate::{
     Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
+pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};
 pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;

@@ -35,6 +35,7 @@ mod configuration;
 mod constraint_rank;
 mod equations;
 pub mod equilibria;
+pub mod kane;
 pub mod linearize;
 mod polynomial_rest;
 mod reactions;

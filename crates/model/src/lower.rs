@@ -761,9 +761,12 @@ fn rolling_equations(
         v[2] + w[0] * d[1] - w[1] * d[0],
     ];
     // Expressed in the body frame the components' coefficients are often constant,
-    // which lets an integrable rolling constraint eliminate a coordinate.
+    // which lets an integrable rolling constraint eliminate a coordinate (the derivation
+    // reads them in normal form). They are left as graphs here: the normal form of a 3-D
+    // contact with `norm()` (the Whipple bicycle's front wheel) took 1.9 s of a 2 s
+    // `linearize`, and Kane's method evaluates the graph as it is (issue 18).
     Ok((0..3)
-        .map(|i| ConstraintForm::Velocity((0..3).map(|k| r[k][i] * vp[k]).sum::<Cx>().normal()))
+        .map(|i| ConstraintForm::Velocity((0..3).map(|k| r[k][i] * vp[k]).sum::<Cx>()))
         .collect())
 }
 

@@ -21,7 +21,10 @@ fn examples() -> Vec<PathBuf> {
             let path = entry.path();
             if path.is_dir() {
                 walk(&path, found);
-            } else if path.extension().is_some_and(|e| e == "lag") {
+            } else if path.extension().is_some_and(|e| e == "lag")
+                && !path.ends_with("whipple-bicycle.lag")
+            {
+                // (The Whipple bicycle's equations are Kane's, evaluated, not printed: issue 18.)
                 found.push(path);
             }
         }

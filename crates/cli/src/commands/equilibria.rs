@@ -22,6 +22,9 @@ pub fn run(
         steady: each(&options.steady, "--steady", |s| analysis.read_number(s))?,
         ranges: each(&options.range, "--range", |s| analysis.read_range(s))?,
     };
+    if initial.is_some() && analysis.describes_steady_motion() {
+        return super::steady::run(path, &analysis, options);
+    }
     match options.sweep.as_slice() {
         [] => {}
         [sweep] => return run_sweep(path, &analysis, &search, sweep, options),

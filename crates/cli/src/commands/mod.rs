@@ -11,6 +11,7 @@ mod linearize_periodic;
 mod reactions;
 pub mod simulate;
 mod solve;
+mod steady;
 
 use std::path::Path;
 

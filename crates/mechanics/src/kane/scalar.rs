@@ -1,0 +1,213 @@
+//! Numbers that carry exact derivatives: `f64`, and dual numbers `a + b ε` (`ε² = 0`) over any
+//! of them, nested to take several derivatives at once (forward-mode differentiation).
+//!
+//! Kane's equations need accelerations, so positions are evaluated at a truncated Taylor
+//! series in time (a dual of a dual: `q + q̇ ε₁ + q̇ ε₂ + q̈ ε₁ε₂`); the linearization needs
+//! their derivatives with respect to the state, one more dual level. Every operation is exact
+//! to rounding: no step sizes.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// What the evaluation of a program needs from its numbers.
+pub trait Scalar:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + std::fmt::Debug
+{
+    /// A constant.
+    fn constant(x: f64) -> Self;
+    /// The value, without any derivative.
+    fn value(self) -> f64;
+    /// Sine.
+    fn sin(self) -> Self;
+    /// Cosine.
+    fn cos(self) -> Self;
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Exponential.
+    fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// Arctangent.
+    fn atan(self) -> Self;
+    /// Arcsine.
+    fn asin(self) -> Self;
+    /// `self` to an integer power.
+    fn powi(self, k: i32) -> Self;
+    /// `self` to a constant real power.
+    fn powf(self, p: f64) -> Self;
+    /// The sign of the value (its derivative is zero where it is defined).
+    fn signum(self) -> f64 {
+        let v = self.value();
+        if v > 0.0 {
+            1.0
+        } else if v < 0.0 {
+            -1.0
+        } else {
+            0.0
+        }
+    }
+}
+
+impl Scalar for f64 {
+    fn constant(x: f64) -> f64 {
+        x
+    }
+    fn value(self) -> f64 {
+        self
+    }
+    fn sin(self) -> f64 {
+        f64::sin(self)
+    }
+    fn cos(self) -> f64 {
+        f64::cos(self)
+    }
+    fn sqrt(self) -> f64 {
+        f64::sqrt(self)
+    }
+    fn exp(self) -> f64 {
+        f64::exp(self)
+    }
+    fn ln(self) -> f64 {
+        f64::ln(self)
+    }
+    fn atan(self) -> f64 {
+        f64::atan(self)
+    }
+    fn asin(self) -> f64 {
+        f64::asin(self)
+    }
+    fn powi(self, k: i32) -> f64 {
+        f64::powi(self, k)
+    }
+    fn powf(self, p: f64) -> f64 {
+        f64::powf(self, p)
+    }
+}
+
+/// `re + eps ε` with `ε² = 0`: the value and one directional derivative.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Dual<T> {
+    /// The value.
+    pub re: T,
+    /// The derivative.
+    pub eps: T,
+}
+
+impl<T: Scalar> Dual<T> {
+    /// `re + eps ε`.
+    pub fn new(re: T, eps: T) -> Dual<T> {
+        Dual { re, eps }
+    }
+
+    /// `x` with no derivative.
+    pub fn constant_of(x: T) -> Dual<T> {
+        Dual::new(x, T::constant(0.0))
+    }
+
+    /// The chain rule: `f(re) + f'(re) eps ε`.
+    fn chain(self, f: T, df: T) -> Dual<T> {
+        Dual::new(f, df * self.eps)
+    }
+}
+
+impl<T: Scalar> Add for Dual<T> {
+    type Output = Dual<T>;
+    fn add(self, o: Dual<T>) -> Dual<T> {
+        Dual::new(self.re + o.re, self.eps + o.eps)
+    }
+}
+
+impl<T: Scalar> Sub for Dual<T> {
+    type Output = Dual<T>;
+    fn sub(self, o: Dual<T>) -> Dual<T> {
+        Dual::new(self.re - o.re, self.eps - o.eps)
+    }
+}
+
+impl<T: Scalar> Mul for Dual<T> {
+    type Output = Dual<T>;
+    fn mul(self, o: Dual<T>) -> Dual<T> {
+        Dual::new(self.re * o.re, self.re * o.eps + self.eps * o.re)
+    }
+}
+
+impl<T: Scalar> Div for Dual<T> {
+    type Output = Dual<T>;
+    fn div(self, o: Dual<T>) -> Dual<T> {
+        let q = self.re / o.re;
+        Dual::new(q, (self.eps - q * o.eps) / o.re)
+    }
+}
+
+impl<T: Scalar> Neg for Dual<T> {
+    type Output = Dual<T>;
+    fn neg(self) -> Dual<T> {
+        Dual::new(-self.re, -self.eps)
+    }
+}
+
+impl<T: Scalar> Scalar for Dual<T> {
+    fn constant(x: f64) -> Dual<T> {
+        Dual::new(T::constant(x), T::constant(0.0))
+    }
+    fn value(self) -> f64 {
+        self.re.value()
+    }
+    fn sin(self) -> Dual<T> {
+        self.chain(self.re.sin(), self.re.cos())
+    }
+    fn cos(self) -> Dual<T> {
+        self.chain(self.re.cos(), -self.re.sin())
+    }
+    fn sqrt(self) -> Dual<T> {
+        let s = self.re.sqrt();
+        self.chain(s, T::constant(0.5) / s)
+    }
+    fn exp(self) -> Dual<T> {
+        let e = self.re.exp();
+        self.chain(e, e)
+    }
+    fn ln(self) -> Dual<T> {
+        self.chain(self.re.ln(), T::constant(1.0) / self.re)
+    }
+    fn atan(self) -> Dual<T> {
+        let one = T::constant(1.0);
+        self.chain(self.re.atan(), one / (one + self.re * self.re))
+    }
+    fn asin(self) -> Dual<T> {
+        let one = T::constant(1.0);
+        self.chain(self.re.asin(), one / (one - self.re * self.re).sqrt())
+    }
+    fn powi(self, k: i32) -> Dual<T> {
+        if k == 0 {
+            return Dual::constant(1.0);
+        }
+        let below = self.re.powi(k - 1);
+        self.chain(below * self.re, T::constant(f64::from(k)) * below)
+    }
+    fn powf(self, p: f64) -> Dual<T> {
+        let below = self.re.powf(p - 1.0);
+        self.chain(below * self.re, T::constant(p) * below)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn second_derivative_by_nesting() {
+        // f(x) = x³ sin x at x = 0.7: f'' = 6x sin x + 6x² cos x − x³ sin x.
+        let x = 0.7_f64;
+        let d = Dual::new(Dual::new(x, 1.0), Dual::new(1.0, 0.0));
+        let f = d.powi(3) * d.sin();
+        let exact = 6.0 * x * x.sin() + 6.0 * x * x * x.cos() - x.powi(3) * x.sin();
+        assert!((f.eps.eps - exact).abs() < 1e-14);
+        assert!((f.re.re - x.powi(3) * x.sin()).abs() < 1e-15);
+    }
+}
