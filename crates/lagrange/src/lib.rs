@@ -80,7 +80,7 @@ pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Ran
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use output::{FileFormat, Output};
-pub use reactions::Reactions;
+pub use reactions::{NumericMultipliers, Reactions};
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
     direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,

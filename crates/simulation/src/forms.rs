@@ -140,6 +140,19 @@ impl<'c> SecondOrder<'c> {
         Ok(())
     }
 
+    /// The multipliers `λ` of `M q̈ + Aᵀλ = f`, `A q̈ = b` at `(t, y)`, one per row of `A`;
+    /// rows that depend on others at the state get 0 (the reaction `Aᵀλ` is the same).
+    pub(crate) fn multipliers(&mut self, t: f64, y: &[f64]) -> Result<Vec<f64>, RhsError> {
+        let n = self.compiled.n;
+        let mut accelerations = vec![0.0; 2 * n];
+        self.rhs(t, y, &mut accelerations)?;
+        let mut lambda = vec![0.0; self.compiled.m];
+        for (k, &row) in self.selected.iter().enumerate() {
+            lambda[row] = self.vector[n + k];
+        }
+        Ok(lambda)
+    }
+
     fn constraint_rows(&mut self) -> Vec<f64> {
         let (n, m) = (self.compiled.n, self.compiled.m);
         let out = self.compiled.dynamics.eval(&self.compiled.inputs);

@@ -538,6 +538,29 @@ impl Simulation {
         (self.compiled.m > 0).then_some(self.drift)
     }
 
+    /// The multipliers `λ` of `M q̈ + Aᵀλ = f`, `A q̈ = b` at time `t` and state `(q, q̇)`,
+    /// one per constraint row (in the order of [`mechanics::Equations::constraint_names`]),
+    /// solved numerically on the compiled equations: the reactions of the constraints kept
+    /// with multipliers are `Q^R = −Aᵀλ`. Rows that depend on others there get 0.
+    ///
+    /// # Errors
+    /// A state of the wrong length, or the KKT matrix singular there.
+    pub fn multipliers_at(&mut self, t: f64, state: &[f64]) -> Result<Vec<f64>, SimulationError> {
+        let n = self.coordinates.len();
+        if state.len() != 2 * n {
+            return Err(SimulationError::InitialState {
+                given: state.len(),
+                needed: 2 * n,
+            });
+        }
+        if self.compiled.m == 0 {
+            return Ok(Vec::new());
+        }
+        SecondOrder::new(&mut self.compiled)
+            .multipliers(t, state)
+            .map_err(SimulationError::Initial)
+    }
+
     /// The method that will run.
     #[must_use]
     pub fn method(&self) -> MethodName {
