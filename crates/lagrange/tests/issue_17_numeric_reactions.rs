@@ -78,7 +78,11 @@ fn numeric_multipliers_equal_the_closed_form_where_there_is_one() {
 fn the_four_bar_s_numeric_multipliers_make_the_accelerations_keep_the_loop_closed() {
     let four_bar = example("four-bar.lag");
     let numeric = four_bar.multipliers_at_start().unwrap();
-    let names: Vec<&str> = numeric.multipliers.iter().map(|(n, _)| n.as_str()).collect();
+    let names: Vec<&str> = numeric
+        .multipliers
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .collect();
     assert_eq!(names, ["loop_x", "loop_y"]);
     let parameters = [
         ("a", 0.3),

@@ -48,11 +48,20 @@ fn a_pulley_released_alone_under_a_rope_in_the_coordinates_is_refused_naming_the
     assert_eq!(others, &["A", "B"]);
     // The analysis gives the same refusal at the reaction's line, as the user's mistake.
     let error = analysis.reactions().expect_err("refused");
-    let Error::Located { line, kind, message, .. } = &error else {
+    let Error::Located {
+        line,
+        kind,
+        message,
+        ..
+    } = &error
+    else {
         panic!("unexpected error: {error}");
     };
     assert_eq!((*line, *kind), (15, ErrorKind::Input));
-    assert!(message.contains("`A` and `B`") && message.contains("missing"), "{message}");
+    assert!(
+        message.contains("`A` and `B`") && message.contains("missing"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -51,7 +51,9 @@ fn run(analysis: &Analysis) -> (Vec<String>, Vec<Vec<f64>>, simulation::Drift) {
     let mut rows = Vec::new();
     let outcome = simulation.run(&mut |row| rows.push(row.to_vec()));
     assert_eq!(outcome.stop, numeric::StopReason::Finished);
-    let drift = simulation.drift().expect("the contact is kept by multipliers");
+    let drift = simulation
+        .drift()
+        .expect("the contact is kept by multipliers");
     (simulation.columns(), rows, drift)
 }
 
@@ -77,7 +79,10 @@ fn largest(rows: &[Vec<f64>], column: usize) -> f64 {
 fn the_rolling_disk_simulates_and_matches_kanes_equations_to_1e_6() {
     let (columns, rows, drift) = run(&disk(&[]));
     let worst = largest_difference(&columns, &rows, &reference()["general"]);
-    assert!(worst < 1e-6, "largest difference from the reference {worst:e}");
+    assert!(
+        worst < 1e-6,
+        "largest difference from the reference {worst:e}"
+    );
     // No friction does work on a rolling disk: the energy stays.
     let energy = columns.iter().position(|c| c == "energy_error").unwrap();
     let error = largest(&rows, energy);
@@ -123,9 +128,15 @@ fn a_steady_turn_at_constant_lean_stays_steady() {
     // about 1e-2 in that time.
     for row in &rows {
         assert!((row[column("theta")] - theta).abs() < 1e-6, "lean {row:?}");
-        assert!((row[column("psi_d")] - omega).abs() < 1e-6, "yaw rate {row:?}");
+        assert!(
+            (row[column("psi_d")] - omega).abs() < 1e-6,
+            "yaw rate {row:?}"
+        );
         assert!((row[column("phi_d")] - spin).abs() < 1e-6, "spin {row:?}");
     }
     let worst = largest_difference(&columns, &rows, &steady["rows"]);
-    assert!(worst < 1e-6, "largest difference from the reference {worst:e}");
+    assert!(
+        worst < 1e-6,
+        "largest difference from the reference {worst:e}"
+    );
 }
