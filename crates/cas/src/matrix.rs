@@ -143,8 +143,10 @@ impl Matrix {
     }
 
     /// [`Matrix::solve`], giving up with [`SolveError::TooLarge`] as soon as an intermediate
-    /// entry (numerator and denominator) has more than `budget` terms: elimination over
-    /// rational functions can grow without bound, and past a size the closed form is of no use.
+    /// entry (numerator and denominator) has more than `budget` terms, or an elimination
+    /// product would have more before cancellation (checked before it is formed: its gcds are
+    /// where the time goes, seconds for the four-bar's 5×5): elimination over rational
+    /// functions can grow without bound, and past a size the closed form is of no use.
     ///
     /// # Errors
     /// As [`Matrix::solve`], or [`SolveError::TooLarge`].
@@ -185,6 +187,20 @@ impl Matrix {
                 }
                 let factor = row[col].clone();
                 for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                    // The product's terms before cancellation bound what its gcds work on,
+                    // which is where the time goes: refuse before paying for them.
+                    let product = |a: &Rf, b: &Rf| {
+                        let (na, da) = (a.num.terms.len(), a.den.terms.len());
+                        let (nb, db) = (b.num.terms.len(), b.den.terms.len());
+                        na.saturating_mul(nb).saturating_add(da.saturating_mul(db))
+                    };
+                    let estimate = product(p, &factor);
+                    if estimate > budget {
+                        return Err(SolveError::TooLarge {
+                            terms: estimate,
+                            budget,
+                        });
+                    }
                     *x = x.sub(&p.mul(&factor));
                     let terms = x.num.terms.len() + x.den.terms.len();
                     if terms > budget {

@@ -90,7 +90,7 @@ pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
 pub use output::{FileFormat, Output};
 pub use projection::ProjectedReaction;
-pub use reactions::Reactions;
+pub use reactions::{NumericMultipliers, Reactions};
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
     direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,

@@ -142,3 +142,87 @@ impl Analysis {
         mechanics::scan_unilateral(equations, value, (state[0], state[1]), &lookup)
     }
 }
+
+/// The multipliers of the constraints kept with multipliers at one state, solved numerically
+/// on the compiled equations (`[M Aᵀ; A 0] [q̈; λ] = [f; b]`): what is printed when the
+/// closed form would be too large.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NumericMultipliers {
+    /// The time of the state.
+    pub t: f64,
+    /// The state: the coordinates, then their rates.
+    pub state: Vec<f64>,
+    /// The coordinates' names.
+    pub coordinates: Vec<String>,
+    /// Each constraint row's constraint name and multiplier `λ` (rows that depend on others
+    /// at the state get 0).
+    pub multipliers: Vec<(String, f64)>,
+}
+
+impl NumericMultipliers {
+    /// The multipliers as text: the state, then `λ` of each row by its constraint's name.
+    #[must_use]
+    pub fn to_text(&self) -> String {
+        let n = self.coordinates.len();
+        let state: Vec<String> = self
+            .coordinates
+            .iter()
+            .zip(&self.state)
+            .map(|(q, x)| format!("{q} = {x}"))
+            .chain(
+                self.coordinates
+                    .iter()
+                    .zip(&self.state[n..])
+                    .map(|(q, x)| format!("{q}' = {x}")),
+            )
+            .collect();
+        let mut text = format!(
+            "multipliers λ of M q̈ + Aᵀλ = f, solved numerically at t = {} ({}):\n",
+            self.t,
+            state.join(", ")
+        );
+        for (name, value) in &self.multipliers {
+            text.push_str(&format!("  {name}: λ = {value:.9e}\n"));
+        }
+        text
+    }
+}
+
+impl Error {
+    /// Whether this is the refusal of reactions too large for closed form, after which the
+    /// numeric multipliers ([`Analysis::multipliers_at_start`]) are what can be given.
+    #[must_use]
+    pub fn is_too_large_for_closed_form(&self) -> bool {
+        matches!(
+            self,
+            Error::Reactions(mechanics::ReactionError::TooLarge { .. })
+        )
+    }
+}
+
+impl Analysis {
+    /// The multipliers at the run's initial state (the model's `initial`, projected onto the
+    /// constraints), solved numerically on compiled equations: no symbolic solve, so it
+    /// costs a derivation and a compilation whatever the size of the closed form.
+    ///
+    /// # Errors
+    /// As [`Analysis::simulation`] (with an end time of one time unit after the start when
+    /// the model gives none: only the initial state is used), or a singular KKT matrix there.
+    pub fn multipliers_at_start(&self) -> Result<NumericMultipliers, Error> {
+        let mut options = crate::SimulationOptions::default();
+        if self.settings(&options).is_err() {
+            options.t_end = Some(options.t_start.unwrap_or(0.0) + 1.0);
+        }
+        let mut simulation = self.simulation(&options)?;
+        let t = simulation.span().0;
+        let state = simulation.initial_state().to_vec();
+        let values = simulation.multipliers_at(t, &state)?;
+        let names = self.equations()?.constraint_names();
+        Ok(NumericMultipliers {
+            t,
+            state,
+            coordinates: self.equations()?.coordinates().to_vec(),
+            multipliers: names.iter().cloned().zip(values).collect(),
+        })
+    }
+}

@@ -97,12 +97,19 @@ impl Analysis {
 
 impl Streamed {
     /// One line on how the run went: method, time reached, steps, evaluations, wall time,
-    /// final energy error.
+    /// final energy error, and with constraints kept by multipliers the largest drift from
+    /// them over the rows (positions, velocities).
     #[must_use]
     pub fn summary_line(&self, simulation: &Simulation) -> String {
         let stats = &self.outcome.stats;
+        let drift = simulation.drift().map_or_else(String::new, |d| {
+            format!(
+                ", constraint drift {:.1e} (positions), {:.1e} (velocities)",
+                d.position, d.velocity
+            )
+        });
         format!(
-            "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {error:.3e}",
+            "{method}: t = {t:.6} of {t_end}, {steps} steps ({rejected} rejected), {evals} evaluations, {wall}, final energy error {error:.3e}{drift}",
             method = simulation.method(),
             t = self.outcome.t,
             t_end = simulation.span().1,

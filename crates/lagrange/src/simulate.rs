@@ -304,6 +304,8 @@ impl Tally {
             "rows": self.rows,
             "final_energy_error": self.energy_error(),
             "max_constraint_drift": self.max_drift,
+            "max_position_drift": simulation.drift().map(|d| d.position),
+            "max_velocity_drift": simulation.drift().map(|d| d.velocity),
             "events": events,
         })
     }

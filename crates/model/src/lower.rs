@@ -43,6 +43,23 @@ pub enum LowerError {
         /// Where.
         span: Span,
     },
+    /// A reaction's released bodies are moved by a coordinate that also moves bodies or
+    /// particles not released, other than through the reaction's point (a rope over a pulley
+    /// built into the coordinates): the force those exert on the released ones would be
+    /// missing from the reaction, which is refused rather than given partial.
+    #[error("reaction `{reaction}`: `{coordinate}` moves the released {} relative to the reaction's point and also moves {} (not released): the force {} on the released {} through `{coordinate}` (a rope, a gear or a link built into the coordinates) would be missing from the reaction, so it is not given; release {} together with {}, or keep that connection as a constraint", quoted(.members), quoted(.others), if .others.len() == 1 { "that one exerts" } else { "those exert" }, if .members.len() == 1 { "one" } else { "ones" }, quoted(.others), quoted(.members))]
+    UnreleasedLoad {
+        /// Where: the reaction's statement.
+        span: Span,
+        /// The reaction.
+        reaction: String,
+        /// The released bodies and particles.
+        members: Vec<String>,
+        /// The coordinate that moves both.
+        coordinate: String,
+        /// The bodies and particles not released that it moves.
+        others: Vec<String>,
+    },
     /// A divisor (or the base of a negative power) that is exactly zero.
     #[error(
         "division by zero: this divisor is zero, so the expression has no value; mend the divisor"
@@ -61,8 +78,18 @@ impl LowerError {
             LowerError::Shape { span, .. }
             | LowerError::Unresolved { span }
             | LowerError::ZeroDirection { span }
+            | LowerError::UnreleasedLoad { span, .. }
             | LowerError::DivisionByZero { span } => *span,
         }
+    }
+}
+
+/// `a`, `b` and `c`, each in backticks.
+fn quoted(names: &[String]) -> String {
+    let quoted: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
+    match quoted.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => quoted.concat(),
     }
 }
 

@@ -12,6 +12,7 @@ use crate::model::{
     Axis, ConstraintId, ConstraintKind, ExprKind, Model, PointId, Projection, ReactionTarget,
     ReleaseMember,
 };
+use crate::span::Span;
 
 /// The displacement coordinates of reaction `name`: `name__x`, `name__y`, `name__z` (or
 /// `name__n` along a direction). The double underscore keeps them apart from model names.
@@ -32,6 +33,8 @@ fn unit(n: Vector) -> Vector {
 
 struct Spec<'a> {
     name: &'a str,
+    /// The statement that asks for the reaction.
+    span: Span,
     kind: ReleaseKind,
     point: PointId,
     members: Vec<ReleaseMember>,
@@ -62,6 +65,7 @@ fn release(model: &Model, spec: Spec<'_>) -> Result<MRelease, LowerError> {
         }
     }
     let point = point_position(model, spec.point)?;
+    unreleased_load(model, &spec, &point)?;
     // A clamp also turns the members about the point by a small rotation ψ: its reaction
     // couple. A hinge and a rolling contact are turned too, to check that the motion needs no
     // couple there (if it does, other supports act on the members, or the joint transmits one).
@@ -193,6 +197,67 @@ fn attached_points(
         .collect())
 }
 
+/// Refuses a release whose members are moved, other than by moving the reaction's point, by a
+/// coordinate that also moves a body or particle not released (a pulley under a rope built
+/// into the coordinates: `φ` turns the pulley and lowers the masses). The released members
+/// then exchange a force with those through the coordinate (the rope's pull), which the
+/// release does not see: it only moves the members. Moving with the point is harmless: a
+/// link hinged at the point carries the bodies beyond it, and that is the force asked for.
+fn unreleased_load(model: &Model, spec: &Spec<'_>, at: &Vector) -> Result<(), LowerError> {
+    let (_, (points, frames)) = lower_parts(model, Shift::default())?;
+    let position = |id: PointId| points.get(id.index()).copied().flatten();
+    let rotation = |frame: crate::model::FrameId| frames.get(frame.index()).copied().flatten();
+    // Each body or particle as (name, released, position, rotation).
+    let mut items: Vec<(String, bool, Option<Vector>, Option<mechanics::Rotation>)> = Vec::new();
+    for (index, p) in model.particles().iter().enumerate() {
+        let released = spec.members.contains(&ReleaseMember::Particle(index));
+        let name = model.point(p.point).name.name.clone();
+        items.push((name, released, position(p.point), None));
+    }
+    for (index, b) in model.bodies().iter().enumerate() {
+        let released = spec
+            .members
+            .contains(&ReleaseMember::Body(crate::model::BodyId(index as u32)));
+        items.push((
+            b.name.name.clone(),
+            released,
+            position(b.centre),
+            rotation(b.frame),
+        ));
+    }
+    for coordinate in model.coordinates().iter().filter(|c| c.driven.is_none()) {
+        let Some(q) = Cx::coordinate(&coordinate.name.name).as_symbol() else {
+            continue;
+        };
+        let moves = |v: &Vector| v.iter().any(|x| !x.diff(q).normal().is_zero());
+        let turns = |r: &Option<mechanics::Rotation>| {
+            r.is_some_and(|r| r.iter().flatten().any(|x| !x.diff(q).normal().is_zero()))
+        };
+        let members_move = items.iter().filter(|item| item.1).any(|item| {
+            let relative = item.2.map(|r| [0, 1, 2].map(|k| r[k] - at[k]));
+            relative.is_some_and(|d| moves(&d)) || turns(&item.3)
+        });
+        if !members_move {
+            continue;
+        }
+        let others: Vec<String> = items
+            .iter()
+            .filter(|item| !item.1 && (item.2.is_some_and(|r| moves(&r)) || turns(&item.3)))
+            .map(|item| item.0.clone())
+            .collect();
+        if !others.is_empty() {
+            return Err(LowerError::UnreleasedLoad {
+                span: spec.span,
+                reaction: spec.name.to_owned(),
+                members: items.iter().filter(|i| i.1).map(|i| i.0.clone()).collect(),
+                coordinate: coordinate.name.name.clone(),
+                others,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// A point's position, read off the lowering of a probe force at it.
 fn point_position(model: &Model, point: PointId) -> Result<Vector, LowerError> {
     let at = crate::model::Expr {
@@ -245,6 +310,7 @@ pub fn reaction_requests(model: &Model) -> Result<Vec<ReactionRequest>, LowerErr
                     model,
                     Spec {
                         name: &name,
+                        span: constraint.span,
                         kind: ReleaseKind::Rolling,
                         point: *contact,
                         members: vec![ReleaseMember::Body(*body)],
@@ -295,6 +361,7 @@ pub fn reaction_requests(model: &Model) -> Result<Vec<ReactionRequest>, LowerErr
             model,
             Spec {
                 name: &r.name.name,
+                span: r.name.span,
                 kind,
                 point: r.point,
                 members: r.members.clone(),

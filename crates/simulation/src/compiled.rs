@@ -141,13 +141,27 @@ impl Compiled {
     /// Energy and constraint drift (the largest `|Φ|` or `|c|`; 0 without constraints, NaN
     /// when the constraint rows could not be matched) at the state in the input buffer.
     pub(crate) fn energy_and_drift(&mut self) -> (f64, f64) {
+        let (energy, position, velocity) = self.energy_and_drifts();
+        (energy, position.max(velocity))
+    }
+
+    /// Energy, position drift (the largest `|Φ|` of the holonomic rows) and velocity drift
+    /// (the largest `|c|` of every row) at the state in the input buffer; the drifts are 0
+    /// without constraints and NaN when the constraint rows could not be matched.
+    pub(crate) fn energy_and_drifts(&mut self) -> (f64, f64, f64) {
+        let holonomic = self.holonomic.len();
+        let known = self.drift_known;
         let out = self.monitor.eval(&self.inputs);
-        let drift = if self.drift_known {
-            out[1..].iter().fold(0.0f64, |d, x| d.max(x.abs()))
-        } else {
-            f64::NAN
+        let largest = |xs: &[f64]| {
+            if known {
+                xs.iter().fold(0.0f64, |d, x| d.max(x.abs()))
+            } else {
+                f64::NAN
+            }
         };
-        (out[0], drift)
+        let position = largest(&out[1..1 + holonomic]);
+        let velocity = largest(&out[1 + holonomic..]);
+        (out[0], position, velocity)
     }
 }
 

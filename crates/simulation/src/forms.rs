@@ -1,7 +1,10 @@
 //! The compiled equations as first-order systems for the integrators:
 //! [`SecondOrder`] with state `y = (q, q̇)`, solving `M q̈ = f` (or the KKT system
 //! `[M Aᵀ; A 0] [q̈; λ] = [f; b]` with constraints) at each evaluation and projecting onto
-//! `Φ = 0`, `c = 0` after each step; [`Canonical`] with state `y = (q, p)`, Hamilton's
+//! `Φ = 0`, `c = 0` after each step. Rows of `A` that depend on others at the state (a rolling
+//! contact's normal row, implied by the contact staying in the plane) are left out of both
+//! solves: [`independent_rows`] picks a largest independent subset by pivoted Gram–Schmidt
+//! (a QR factorisation of `Aᵀ` with column pivoting), and the rows left out get no multiplier; [`Canonical`] with state `y = (q, p)`, Hamilton's
 //! equations `q̇ = M⁻¹(p − p₀)`, `ṗ = ∂L/∂q + Q`, for the symplectic method.
 
 use numeric::{cholesky_solve_in_place, solve_in_place, LinearError, OdeSystem, RhsError};
@@ -22,23 +25,90 @@ pub(crate) struct SecondOrder<'c> {
     vector: Vec<f64>,
     gram: Vec<f64>,
     multipliers: Vec<f64>,
+    /// Scratch for [`independent_rows`]: the rows being orthogonalised.
+    work: Vec<f64>,
+    /// `0..m`, the rows to choose from.
+    rows_all: Vec<usize>,
+    /// The rows of `A` kept at the current state (positions in the list chosen from).
+    selected: Vec<usize>,
+}
+
+/// Rows whose part orthogonal to the rows already kept is smaller than this, relative to the
+/// largest row, depend on them. Far above rounding (1e-16 relative), far below the
+/// conditioning of a real mechanism away from its singular configurations.
+const DEPENDENT: f64 = 1e-10;
+
+/// Picks from `rows` of `a` (row-major, `n` columns) a largest subset of linearly independent
+/// rows and leaves their positions in `rows` in `selected`, in order: pivoted Gram–Schmidt, each step keeping the
+/// row with the largest part orthogonal to those kept, until what is left is below
+/// [`DEPENDENT`] times the largest row. `work` holds `rows.len() × n` numbers.
+pub(crate) fn independent_rows(
+    a: &[f64],
+    n: usize,
+    rows: &[usize],
+    work: &mut Vec<f64>,
+    selected: &mut Vec<usize>,
+) {
+    let k = rows.len();
+    work.clear();
+    for &r in rows {
+        work.extend_from_slice(&a[r * n..(r + 1) * n]);
+    }
+    let norm = |w: &[f64], i: usize| w[i * n..(i + 1) * n].iter().map(|x| x * x).sum::<f64>();
+    let largest = (0..k).map(|i| norm(work, i)).fold(0.0f64, f64::max).sqrt();
+    let mut kept = vec![false; k];
+    selected.clear();
+    if largest == 0.0 || !largest.is_finite() {
+        // Nothing to orthogonalise (every row vanishes here), or numbers that cannot be
+        // judged: keep every row and let the solve report what it finds.
+        selected.extend(0..k);
+        return;
+    }
+    loop {
+        let pivot = (0..k)
+            .filter(|&i| !kept[i])
+            .map(|i| (i, norm(work, i)))
+            .max_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((p, size)) = pivot else { break };
+        if size.sqrt() <= DEPENDENT * largest {
+            break;
+        }
+        kept[p] = true;
+        let (size, unit) = (size.sqrt(), p * n);
+        for c in 0..n {
+            work[unit + c] /= size;
+        }
+        for i in (0..k).filter(|&i| !kept[i]) {
+            let dot: f64 = (0..n).map(|c| work[i * n + c] * work[unit + c]).sum();
+            for c in 0..n {
+                work[i * n + c] -= dot * work[unit + c];
+            }
+        }
+    }
+    selected.extend((0..k).filter(|&i| kept[i]));
 }
 
 impl<'c> SecondOrder<'c> {
     pub(crate) fn new(compiled: &'c mut Compiled) -> Self {
         let size = compiled.n + compiled.m;
-        let m = compiled.m;
+        let (n, m) = (compiled.n, compiled.m);
         SecondOrder {
             compiled,
             matrix: vec![0.0; size * size],
             vector: vec![0.0; size],
             gram: vec![0.0; m * m],
             multipliers: vec![0.0; m],
+            work: Vec::with_capacity(m * n),
+            selected: Vec::with_capacity(m),
+            rows_all: Vec::with_capacity(m),
         }
     }
 
-    /// Solves `(B Bᵀ) μ = r` and returns `Bᵀ μ` in `correction`, with `B` the rows `rows`
-    /// of `A` (n columns): the least-norm correction that removes the residual `r`.
+    /// Solves `(B Bᵀ) μ = r` and returns `Bᵀ μ` in `correction`, with `B` the rows of `A`
+    /// (n columns) among `rows` that are independent at this state and `r` their residuals
+    /// (`residual[i]` belongs to `rows[i]`): the least-norm correction that removes the
+    /// residual. Dependent rows are left out, which makes `B Bᵀ` regular; their residuals
+    /// go with the others' where the constraints are consistent.
     fn least_norm(
         &mut self,
         a: &[f64],
@@ -47,23 +117,40 @@ impl<'c> SecondOrder<'c> {
         correction: &mut [f64],
     ) -> Result<(), RhsError> {
         let n = self.compiled.n;
-        let k = rows.len();
-        for (i, &ri) in rows.iter().enumerate() {
-            for (j, &rj) in rows.iter().enumerate() {
+        independent_rows(a, n, rows, &mut self.work, &mut self.selected);
+        let k = self.selected.len();
+        for (i, &pi) in self.selected.iter().enumerate() {
+            let ri = rows[pi];
+            for (j, &pj) in self.selected.iter().enumerate() {
+                let rj = rows[pj];
                 self.gram[i * k + j] = (0..n).map(|c| a[ri * n + c] * a[rj * n + c]).sum();
             }
-            self.multipliers[i] = residual[i];
+            self.multipliers[i] = residual[pi];
         }
         solve_in_place(k, &mut self.gram[..k * k], &mut self.multipliers[..k])
             .map_err(|_| RhsError::ProjectionFailed)?;
         for (c, value) in correction.iter_mut().enumerate() {
-            *value = rows
+            *value = self
+                .selected
                 .iter()
                 .enumerate()
-                .map(|(i, &r)| a[r * n + c] * self.multipliers[i])
+                .map(|(i, &p)| a[rows[p] * n + c] * self.multipliers[i])
                 .sum();
         }
         Ok(())
+    }
+
+    /// The multipliers `λ` of `M q̈ + Aᵀλ = f`, `A q̈ = b` at `(t, y)`, one per row of `A`;
+    /// rows that depend on others at the state get 0 (the reaction `Aᵀλ` is the same).
+    pub(crate) fn multipliers(&mut self, t: f64, y: &[f64]) -> Result<Vec<f64>, RhsError> {
+        let n = self.compiled.n;
+        let mut accelerations = vec![0.0; 2 * n];
+        self.rhs(t, y, &mut accelerations)?;
+        let mut lambda = vec![0.0; self.compiled.m];
+        for (k, &row) in self.selected.iter().enumerate() {
+            lambda[row] = self.vector[n + k];
+        }
+        Ok(lambda)
     }
 
     fn constraint_rows(&mut self) -> Vec<f64> {
@@ -80,7 +167,6 @@ impl OdeSystem for SecondOrder<'_> {
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
         let (n, m) = (self.compiled.n, self.compiled.m);
-        let size = n + m;
         let c = &mut *self.compiled;
         c.inputs[..2 * n].copy_from_slice(y);
         c.inputs[2 * n] = t;
@@ -89,34 +175,42 @@ impl OdeSystem for SecondOrder<'_> {
         let (forcing, rest) = rest.split_at(n);
         let (a, b) = rest.split_at(m * n);
         if m == 0 {
-            // The same layout: one copy rather than one per row.
-            self.matrix.copy_from_slice(mass);
-            self.vector.copy_from_slice(forcing);
-        } else {
-            for i in 0..n {
-                self.matrix[i * size..i * size + n].copy_from_slice(&mass[i * n..(i + 1) * n]);
-                for k in 0..m {
-                    self.matrix[i * size + n + k] = a[k * n + i];
-                }
-                self.vector[i] = forcing[i];
-            }
-        }
-        for k in 0..m {
-            let row = (n + k) * size;
-            self.matrix[row..row + n].copy_from_slice(&a[k * n..(k + 1) * n]);
-            self.matrix[row + n..row + size].fill(0.0);
-            self.vector[n + k] = b[k];
-        }
-        if m == 0 {
             // A mass matrix is symmetric positive definite where the model is regular:
             // Cholesky first, LU (which also names the singular column) when that fails.
+            self.matrix.copy_from_slice(mass);
+            self.vector.copy_from_slice(forcing);
             if cholesky_solve_in_place(n, &mut self.matrix, &mut self.vector).is_err() {
                 self.matrix.copy_from_slice(mass);
                 self.vector[..n].copy_from_slice(forcing);
                 solve_in_place(n, &mut self.matrix, &mut self.vector).map_err(singular)?;
             }
         } else {
-            solve_in_place(size, &mut self.matrix, &mut self.vector).map_err(singular)?;
+            // Only independent rows enter the KKT matrix, which is singular otherwise; the
+            // rows left out hold wherever the kept ones do (they are combinations of them).
+            self.rows_all.clear();
+            self.rows_all.extend(0..m);
+            independent_rows(a, n, &self.rows_all, &mut self.work, &mut self.selected);
+            let size = n + self.selected.len();
+            for i in 0..n {
+                let row = &mut self.matrix[i * size..(i + 1) * size];
+                row[..n].copy_from_slice(&mass[i * n..(i + 1) * n]);
+                for (k, &r) in self.selected.iter().enumerate() {
+                    row[n + k] = a[r * n + i];
+                }
+                self.vector[i] = forcing[i];
+            }
+            for (k, &r) in self.selected.iter().enumerate() {
+                let row = (n + k) * size;
+                self.matrix[row..row + n].copy_from_slice(&a[r * n..(r + 1) * n]);
+                self.matrix[row + n..row + size].fill(0.0);
+                self.vector[n + k] = b[r];
+            }
+            solve_in_place(
+                size,
+                &mut self.matrix[..size * size],
+                &mut self.vector[..size],
+            )
+            .map_err(singular)?;
         }
         dy[..n].copy_from_slice(&y[n..]);
         dy[n..].copy_from_slice(&self.vector[..n]);

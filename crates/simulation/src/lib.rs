@@ -24,6 +24,6 @@ mod forms;
 mod run;
 
 pub use run::{
-    InitialCorrection, Limit, MethodName, RecordedCrossing, Settings, Setup, Simulation,
+    Drift, InitialCorrection, Limit, MethodName, RecordedCrossing, Settings, Setup, Simulation,
     SimulationError, StopEvent,
 };

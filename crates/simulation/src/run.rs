@@ -385,6 +385,33 @@ fn count_text(count: f64) -> String {
     }
 }
 
+/// The largest constraint residuals over the rows of a run (written rows and recorded
+/// crossings), at position level (`|Φ_i(q,t)|` of the holonomic constraints kept with
+/// multipliers) and at velocity level (`|c_i(q,q̇,t)|` of every kept constraint). NaN when the
+/// constraint rows could not be matched to their constraints (the drift is unknown).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Drift {
+    /// The largest `|Φ_i|` (0 when no kept constraint is holonomic).
+    pub position: f64,
+    /// The largest `|c_i|`.
+    pub velocity: f64,
+}
+
+impl Drift {
+    /// Takes in one state's residuals; NaN (unknown) stays NaN, which `max` would drop.
+    fn note(&mut self, position: f64, velocity: f64) {
+        let keep = |largest: f64, x: f64| {
+            if largest.is_nan() || x.is_nan() {
+                f64::NAN
+            } else {
+                largest.max(x)
+            }
+        };
+        self.position = keep(self.position, position);
+        self.velocity = keep(self.velocity, velocity);
+    }
+}
+
 /// How the initial state was moved onto the constraints kept with multipliers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InitialCorrection {
@@ -424,6 +451,7 @@ pub struct Simulation {
     initial_energy: f64,
     stop_events: Vec<StopEvent>,
     record_when: Vec<String>,
+    drift: Drift,
 }
 
 /// Initial states that differ by less than this (relative to their size) are the same.
@@ -494,6 +522,7 @@ impl Simulation {
             initial_energy,
             stop_events: setup.stop_events,
             record_when: setup.record_when,
+            drift: Drift::default(),
         })
     }
 
@@ -525,6 +554,36 @@ impl Simulation {
         columns.push("energy_error".to_owned());
         columns.push("constraint_drift".to_owned());
         columns
+    }
+
+    /// The largest constraint residuals over the rows of the last run (zeros before a run);
+    /// `None` without constraints kept with multipliers.
+    #[must_use]
+    pub fn drift(&self) -> Option<Drift> {
+        (self.compiled.m > 0).then_some(self.drift)
+    }
+
+    /// The multipliers `λ` of `M q̈ + Aᵀλ = f`, `A q̈ = b` at time `t` and state `(q, q̇)`,
+    /// one per constraint row (in the order of [`mechanics::Equations::constraint_names`]),
+    /// solved numerically on the compiled equations: the reactions of the constraints kept
+    /// with multipliers are `Q^R = −Aᵀλ`. Rows that depend on others there get 0.
+    ///
+    /// # Errors
+    /// A state of the wrong length, or the KKT matrix singular there.
+    pub fn multipliers_at(&mut self, t: f64, state: &[f64]) -> Result<Vec<f64>, SimulationError> {
+        let n = self.coordinates.len();
+        if state.len() != 2 * n {
+            return Err(SimulationError::InitialState {
+                given: state.len(),
+                needed: 2 * n,
+            });
+        }
+        if self.compiled.m == 0 {
+            return Ok(Vec::new());
+        }
+        SecondOrder::new(&mut self.compiled)
+            .multipliers(t, state)
+            .map_err(SimulationError::Initial)
     }
 
     /// The method that will run.
@@ -608,7 +667,7 @@ impl Simulation {
         // Rows and crossings are both written by the row maker; the integrator calls one
         // callback at a time, so they share it through a RefCell.
         let rows = RefCell::new(RowMaker::new(&self.compiled, self.initial_energy));
-        match method {
+        let outcome = match method {
             MethodName::Dopri5 | MethodName::Dop853 | MethodName::Sdirk => {
                 let mut system = SecondOrder::new(&mut self.compiled);
                 integrate_observed(
@@ -681,7 +740,9 @@ impl Simulation {
                     },
                 )
             }
-        }
+        };
+        self.drift = rows.into_inner().drift;
+        outcome
     }
 }
 
@@ -689,6 +750,7 @@ impl Simulation {
 /// copy of the compiled equations (energy, drift, projection) apart from the integrated one.
 struct RowMaker {
     monitor: Compiled,
+    drift: Drift,
     energy0: f64,
     scale: f64,
     projected: Vec<f64>,
@@ -701,6 +763,7 @@ impl RowMaker {
         let n = compiled.n;
         RowMaker {
             monitor: compiled.clone(),
+            drift: Drift::default(),
             energy0,
             scale: if energy0.abs() < 1e-12 {
                 1.0
@@ -733,7 +796,9 @@ impl RowMaker {
             (q, qd)
         };
         self.monitor.set_state(q, qd, t);
-        let (energy, drift) = self.monitor.energy_and_drift();
+        let (energy, position, velocity) = self.monitor.energy_and_drifts();
+        let drift = position.max(velocity);
+        self.drift.note(position, velocity);
         self.row[0] = t;
         self.row[1..=n].copy_from_slice(q);
         self.row[n + 1..=2 * n].copy_from_slice(qd);

@@ -10,7 +10,18 @@ use crate::exit::{print, Exit, Failure};
 /// Computes and prints the reactions of a model file.
 pub fn run(path: &Path, format: ResultFormat, set: &[String]) -> Result<Exit, Failure> {
     let analysis = super::load(path, set)?;
-    let Some(computed) = analysis.reactions().map_err(|e| Failure::of(e, path))? else {
+    let computed = match analysis.reactions() {
+        // Too large for closed form: the multipliers at the initial state, in numbers.
+        Err(e) if e.is_too_large_for_closed_form() && format == EomFormat::Text => {
+            let numeric = analysis
+                .multipliers_at_start()
+                .map_err(|e| Failure::of(e, path))?;
+            print(format!("{e}; instead:\n{}", numeric.to_text()))?;
+            return Ok(Exit::Success);
+        }
+        other => other.map_err(|e| Failure::of(e, path))?,
+    };
+    let Some(computed) = computed else {
         return Err(Failure::input(
             "the model asks for no reaction; add `reactions CONSTRAINT` or `reaction NAME: hinge P on BODY`",
         ));
