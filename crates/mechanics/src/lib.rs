@@ -35,6 +35,7 @@ mod configuration;
 mod constraint_rank;
 mod equations;
 pub mod equilibria;
+mod kkt;
 pub mod linearize;
 mod polynomial_rest;
 mod reactions;
@@ -47,6 +48,7 @@ pub use equations::{
     angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,
     FirstIntegral, MechanicsError, Part,
 };
+pub use kkt::{null_space, KeptRest};
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{
     reactions, reactions_of, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release,
