@@ -327,7 +327,8 @@ fn build_rest(
         .filter(|(_, f)| !**f)
         .map(|(q, _)| *q)
         .collect();
-    let exact = match &kept {
+    let mut kept = kept;
+    let exact = match &mut kept {
         None => solve_in_blocks(&residuals, &bound).map(|b| full_branches(b, &symbols, &free)),
         Some(k) => crate::kkt::exact_branches(&residuals, k, &symbols, &free),
     };
@@ -695,7 +696,12 @@ pub fn find_equilibria(
     check_values(rest, values)?;
     let bounds = search_box(rest, bounds);
     let (mut found, method) = if let Some(kept) = &rest.constraints {
-        match &rest.exact {
+        let env = environment(values);
+        let degenerate = kept.degenerate_when.iter().any(|e| {
+            e.eval(&env)
+                .map_or(true, |v| v.abs() <= 1e-12 * (1.0 + max_value(values)))
+        });
+        match rest.exact.as_ref().filter(|_| !degenerate) {
             Some(branches) => (
                 crate::kkt::exact_kkt_equilibria(rest, kept, branches, values),
                 Method::Exact,
@@ -736,6 +742,11 @@ pub fn find_equilibria(
         bounds,
         repeated: Vec::new(),
     })
+}
+
+/// The largest magnitude among the values (the scale of a degenerate-case test).
+fn max_value(values: &Values) -> f64 {
+    values.values().fold(0.0_f64, |m, v| m.max(v.abs()))
 }
 
 /// The search box: angles over a turn, other coordinates over their given range (a missing or

@@ -34,6 +34,11 @@ pub struct KeptRest {
     pub functions: Vec<Expr>,
     /// `A = ∂Φ/∂q`, one row per constraint.
     pub gradient: Vec<Vec<Expr>>,
+    /// Expressions in the parameters that, where one vanishes, leave a choice of rows of the
+    /// exact solve with equations it cannot solve (the Atwood machine's `(m1 − m2) g` when the
+    /// masses balance, and the equilibria form a family): then the exact branches may miss
+    /// equilibria, and the search is numeric.
+    pub degenerate_when: Vec<Expr>,
 }
 
 impl KeptRest {
@@ -229,6 +234,7 @@ pub(crate) fn kept_constraints(
             .collect(),
         functions,
         gradient,
+        degenerate_when: Vec::new(),
     })
 }
 
@@ -236,10 +242,12 @@ pub(crate) fn kept_constraints(
 const MAX_PARTITIONS: usize = 64;
 
 /// All equilibria as exact branches (with the multipliers), or `None` when a choice of rows
-/// that gives the multipliers leaves equations the exact solver cannot solve.
+/// that gives the multipliers leaves equations the exact solver cannot solve. A choice that
+/// leaves an equation free of the coordinates has no equilibria unless that expression of the
+/// parameters vanishes: it is recorded in [`KeptRest::degenerate_when`] instead.
 pub(crate) fn exact_branches(
     residuals: &[Expr],
-    kept: &KeptRest,
+    kept: &mut KeptRest,
     symbols: &[Symbol],
     free: &[bool],
 ) -> Option<Vec<Branch>> {
@@ -289,6 +297,13 @@ pub(crate) fn exact_branches(
             .map(|i| residuals[i].subs(&pairs).normal().numer_denom().0)
             .chain(kept.functions.iter().copied())
             .collect();
+        let constant = equations
+            .iter()
+            .find(|e| !e.is_zero() && bound.iter().all(|q| e.diff(*q).is_zero()));
+        if let Some(e) = constant {
+            kept.degenerate_when.push(*e);
+            continue;
+        }
         let partials = solve_in_blocks(&equations, &bound)?;
         for branch in full_branches(partials, symbols, free) {
             let at: Vec<(Expr, Expr)> = symbols
