@@ -541,6 +541,9 @@ pub(crate) fn kkt_equilibria(
         let Some(z) = numeric::roots::newton(&f, &j, &z0, 1e-10) else {
             continue;
         };
+        // Polished to rounding where it gets there (the acceptance test above is relative to
+        // the equations' scale; this makes the values good to the last digits).
+        let z = numeric::roots::newton(&f, &j, &z, 1e-13).unwrap_or(z);
         let mut x = full(&z)[..n].to_vec();
         wrap(rest, &mut x);
         let outside = active
