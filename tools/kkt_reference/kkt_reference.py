@@ -166,7 +166,7 @@ def slider_crank():
     ]
     rotations = [(0, m1 * r**2 / 12), (1, m2 * l**2 / 12)]
     mass = lambda q: mass_from(points, rotations, q)
-    return System("slider-crank", ["th", "ph", "s"], [True, True, False], grad_v, phi, jac_phi, mass, (-10, 10))
+    return System("slider-crank", ["th", "phi", "s"], [True, True, False], grad_v, phi, jac_phi, mass, (-10, 10))
 
 
 def cartesian_pendulum():
