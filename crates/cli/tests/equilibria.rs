@@ -90,7 +90,10 @@ fn unsupported_models_fail_with_a_clear_error() {
     // A non-holonomic constraint kept by a multiplier does not fix the configuration.
     let (ok, _, err) = run(&["equilibria", "examples/knife-edge.lag"]);
     assert!(!ok);
-    assert!(err.contains("non-holonomic") && err.contains("not supported"), "{err}");
+    assert!(
+        err.contains("non-holonomic") && err.contains("not supported"),
+        "{err}"
+    );
     let (ok, _, err) = run(&[
         "equilibria",
         "examples/simple-pendulum.lag",

@@ -45,7 +45,12 @@ fn agrees_with_reference(model: &str) {
     let analysis = Analysis::from_file(&root().join(format!("examples/{model}.lag"))).unwrap();
     let found = analysis.equilibria().unwrap();
     let expected = data["equilibria"].as_array().unwrap();
-    assert_eq!(found.set.equilibria.len(), expected.len(), "{}", found.to_text());
+    assert_eq!(
+        found.set.equilibria.len(),
+        expected.len(),
+        "{}",
+        found.to_text()
+    );
     for e in expected {
         let q = numbers(&e["q"]);
         let position = found.set.equilibria.iter().position(|f| {
@@ -54,7 +59,11 @@ fn agrees_with_reference(model: &str) {
                 .zip(&q)
                 .zip(&found.rest.periodic)
                 .all(|((a, b), p)| {
-                    let d = if *p { angle_difference(*a, *b) } else { (a - b).abs() };
+                    let d = if *p {
+                        angle_difference(*a, *b)
+                    } else {
+                        (a - b).abs()
+                    };
                     d <= 1e-9 * (1.0 + b.abs())
                 })
         });
@@ -70,12 +79,19 @@ fn agrees_with_reference(model: &str) {
         for (a, b) in w2.iter().zip(&reference_w2) {
             assert!(close(*a, *b), "{model} at {q:?}: ω² = {a}, reference {b}");
         }
-        assert_eq!(lin.stable, Some(e["stable"].as_bool().unwrap()), "{model} at {q:?}");
+        assert_eq!(
+            lin.stable,
+            Some(e["stable"].as_bool().unwrap()),
+            "{model} at {q:?}"
+        );
         // The modes are shown in all the coordinates and satisfy the constraints to first
         // order: A(q0) φ = 0.
         let kept = found.rest.constraints.as_ref().unwrap();
-        let values: lagrange::mechanics::equilibria::Values = analysis.values().unwrap().into_iter().collect();
-        let a = kept.gradient_at(&found.rest, &ours.values, &values).unwrap();
+        let values: lagrange::mechanics::equilibria::Values =
+            analysis.values().unwrap().into_iter().collect();
+        let a = kept
+            .gradient_at(&found.rest, &ours.values, &values)
+            .unwrap();
         for mode in &lin.modes {
             assert_eq!(mode.len(), q.len());
             for row in &a {
@@ -105,7 +121,10 @@ fn cartesian_pendulum_matches_the_scipy_reference() {
 fn the_cartesian_pendulum_is_solved_exactly() {
     let analysis = Analysis::from_file(&root().join("examples/cartesian-pendulum.lag")).unwrap();
     let found = analysis.equilibria().unwrap();
-    assert_eq!(found.set.method, lagrange::mechanics::equilibria::Method::Exact);
+    assert_eq!(
+        found.set.method,
+        lagrange::mechanics::equilibria::Method::Exact
+    );
     let bottom = found
         .set
         .equilibria
@@ -131,9 +150,22 @@ fn the_cartesian_pendulum_is_solved_exactly() {
     other.set_value("l", 2.5).unwrap();
     other.set_value("m", 3.0).unwrap();
     let found = other.equilibria().unwrap();
-    let e = found.set.equilibria.iter().position(|e| e.values[1] < 0.0).unwrap();
-    assert!(close(found.set.equilibria[e].multipliers[0], 3.0 * 9.81 / 5.0));
-    let w2 = found.linearized[e].as_ref().unwrap().omega_squared.clone().unwrap();
+    let e = found
+        .set
+        .equilibria
+        .iter()
+        .position(|e| e.values[1] < 0.0)
+        .unwrap();
+    assert!(close(
+        found.set.equilibria[e].multipliers[0],
+        3.0 * 9.81 / 5.0
+    ));
+    let w2 = found.linearized[e]
+        .as_ref()
+        .unwrap()
+        .omega_squared
+        .clone()
+        .unwrap();
     assert!(close(w2[0], 9.81 / 2.5));
 }
 
@@ -167,7 +199,11 @@ fn the_free_response_stays_on_the_constraints() {
     let t = 0.3;
     let response = lin.free_response(&dq0, &[0.0; 3], t).unwrap();
     for (r, x) in response.iter().zip(&dq0) {
-        assert!((r - x * (w * t).cos()).abs() < 1e-12, "{r} vs {}", x * (w * t).cos());
+        assert!(
+            (r - x * (w * t).cos()).abs() < 1e-12,
+            "{r} vs {}",
+            x * (w * t).cos()
+        );
     }
 }
 
@@ -179,7 +215,10 @@ fn equilibria_and_linearize_print_the_multipliers_by_constraint() {
     assert!(text.contains("multiplier λ1 (loop_x) = "), "{text}");
     assert!(text.contains("[loop_y, λ2]  0 = "), "{text}");
     let json = found.to_json();
-    assert_eq!(json["equilibria"][0]["multipliers"][1]["constraint"], "loop_y");
+    assert_eq!(
+        json["equilibria"][0]["multipliers"][1]["constraint"],
+        "loop_y"
+    );
     assert_eq!(json["constraints"][0]["multiplier"], "lambda1");
     let linearized = found.linearized_json(None, None);
     let reduced = &linearized["linearized"][0]["reduced"];
