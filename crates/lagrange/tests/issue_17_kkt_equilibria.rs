@@ -225,3 +225,18 @@ fn equilibria_and_linearize_print_the_multipliers_by_constraint() {
     assert_eq!(reduced["basis"].as_array().unwrap().len(), 1);
     assert_eq!(reduced["K"].as_array().unwrap().len(), 1);
 }
+
+#[test]
+fn the_modes_of_a_closed_loop_animate() {
+    for model in ["four-bar", "slider-crank"] {
+        let analysis = Analysis::from_file(&root().join(format!("examples/{model}.lag"))).unwrap();
+        let page = analysis.mode_animation(1, None, 10.0, &[]).unwrap();
+        assert!(
+            page.contains("<html") || page.contains("<!DOCTYPE"),
+            "{model}"
+        );
+        // One degree of freedom: one mode.
+        let error = analysis.mode_animation(2, None, 10.0, &[]).unwrap_err();
+        assert!(error.to_string().contains("1 mode(s)"), "{model}: {error}");
+    }
+}
