@@ -2,7 +2,7 @@
 //! steady motions (cyclic coordinates spinning at a set rate) and parameter sweeps.
 
 use mechanics::equilibria::{
-    find_equilibria, spin_rate, steady_equations, EquilibriumSet, RestEquations, Values,
+    find_equilibria, rest_equations_of, spin_rate, EquilibriumSet, RestEquations, Values,
 };
 use mechanics::keep_distinct_configurations;
 use mechanics::linearize::{linear_model, linearize_at, LinearModel, LinearizeError, Linearized};
@@ -161,12 +161,17 @@ impl Prepared {
             .equilibria
             .iter()
             .map(|e| {
+                // With constraints kept by multipliers the stiffness holds the multipliers.
+                let with = match &self.rest.constraints {
+                    Some(kept) => kept.with_multipliers(values, &e.multipliers),
+                    None => values.clone(),
+                };
                 linearize_at(
                     &self.model,
                     &self.rest,
                     &e.values,
                     e.exact.as_deref(),
-                    values,
+                    &with,
                 )
             })
             .collect();
@@ -261,7 +266,7 @@ impl Analysis {
         }
         let equations = self.equations()?;
         let spinning: Vec<String> = search.steady.iter().map(|(q, _)| q.clone()).collect();
-        let rest = steady_equations(equations, &spinning)?;
+        let rest = rest_equations_of(self.system(), equations, &spinning)?;
         let mut values: Values = self.values()?.into_iter().collect();
         let mut known: Vec<String> = values.keys().cloned().collect();
         known.extend(self.system().parameters().iter().map(|(n, _)| n.clone()));

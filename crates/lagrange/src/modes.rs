@@ -27,6 +27,10 @@ pub(crate) struct Mode {
     shape: Vec<f64>,
     /// `ωₖ`, in radians per unit of time.
     pub omega: f64,
+    /// With constraints kept by multipliers: the constraints, the rest equations and the
+    /// values, to bring `q₀ + s φ` back onto `Φ = 0` (a closed loop stays closed at the
+    /// amplitude drawn).
+    manifold: Option<(mechanics::KeptRest, RestEquations, Values)>,
 }
 
 impl Mode {
@@ -76,7 +80,16 @@ impl Mode {
                 }
             )));
         }
+        let manifold = match &equilibria.rest.constraints {
+            Some(kept) => Some((
+                kept.clone(),
+                equilibria.rest.clone(),
+                analysis.values()?.into_iter().collect(),
+            )),
+            None => None,
+        };
         Ok(Mode {
+            manifold,
             names: equilibria.rest.coordinates.clone(),
             rest: modes.rest,
             shape: modes.shapes[k - 1].clone(),
@@ -87,10 +100,21 @@ impl Mode {
     /// The value of coordinate `name` at `q₀ + s φ` (0 for one the equations do not have: a
     /// driven or an eliminated coordinate, filled in elsewhere).
     pub(crate) fn value(&self, name: &str, s: f64) -> f64 {
-        self.names
-            .iter()
-            .position(|n| n == name)
-            .map_or(0.0, |i| self.rest[i] + s * self.shape[i])
+        let Some(i) = self.names.iter().position(|n| n == name) else {
+            return 0.0;
+        };
+        match &self.manifold {
+            Some((kept, rest, values)) => {
+                let q: Vec<f64> = self
+                    .rest
+                    .iter()
+                    .zip(&self.shape)
+                    .map(|(q0, x)| q0 + s * x)
+                    .collect();
+                kept.project(rest, &q, values)[i]
+            }
+            None => self.rest[i] + s * self.shape[i],
+        }
     }
 
     /// The amplitude `a` at which the drawn point that moves farthest moves by [`REACH`] of

@@ -14,6 +14,7 @@ use cas::{solve_for, Condition, Expr, Matrix, Solved, Symbol};
 
 use crate::compiled_eval::CompiledExprs;
 use crate::equations::Equations;
+use crate::kkt::{kkt_equilibria, KeptRest};
 use crate::polynomial_rest::{real_roots, rest_polynomial, RestPolynomial};
 
 /// What can go wrong looking for equilibria.
@@ -36,6 +37,19 @@ pub enum EquilibriumError {
         /// Its name.
         name: String,
     },
+    /// A constraint kept by a multiplier is not holonomic (a rolling or knife-edge condition
+    /// on the rates): the rest equations do not fix the configuration it allows.
+    #[error("equilibria of systems with non-holonomic constraints kept by multipliers ({}) are not supported", names.join(", "))]
+    NonholonomicKept {
+        /// The constraints.
+        names: Vec<String>,
+    },
+    /// Steady motions asked for a system with constraints kept by multipliers.
+    #[error("steady motions of systems with constraints kept by multipliers ({}) are not supported", names.join(", "))]
+    SteadyWithMultipliers {
+        /// The constraints.
+        names: Vec<String>,
+    },
     /// A parameter or input has no numeric value.
     #[error("`{name}` has no numeric value; give it one")]
     MissingValue {
@@ -54,7 +68,8 @@ pub struct RestEquations {
     pub coordinates: Vec<String>,
     /// Coordinate symbols.
     pub symbols: Vec<Symbol>,
-    /// `f(q, 0)`, one per coordinate.
+    /// `f(q, 0)`, one per coordinate; with constraints kept by multipliers,
+    /// `f(q, 0) − A(q)ᵀλ` with the multipliers as the symbols of [`KeptRest::multipliers`].
     pub residuals: Vec<Expr>,
     /// `∂f_i/∂q_j` at rest, row-major.
     pub jacobian: Vec<Vec<Expr>>,
@@ -71,6 +86,9 @@ pub struct RestEquations {
     /// When not solved exactly but a single coordinate's rest equation is a polynomial (in the
     /// coordinate, or in `tan(q/2)` for an angle): its coefficients.
     pub polynomial: Option<RestPolynomial>,
+    /// The holonomic constraints kept by multipliers, `Φ(q) = 0`, that the equilibria must
+    /// satisfy besides the residuals (`None` without such constraints).
+    pub constraints: Option<KeptRest>,
 }
 
 /// One exact family of equilibria: a value per coordinate and when it exists.
@@ -80,6 +98,8 @@ pub struct Branch {
     pub values: Vec<Expr>,
     /// Conditions on the parameters for the branch to exist.
     pub conditions: Vec<Condition>,
+    /// The multipliers' values, one per kept constraint (empty without constraints).
+    pub multipliers: Vec<Expr>,
 }
 
 /// How the equilibria were found.
@@ -125,6 +145,12 @@ pub struct Equilibrium {
     pub exact: Option<Vec<Expr>>,
     /// Conditions under which the exact branch exists.
     pub conditions: Vec<Condition>,
+    /// The multipliers `λ` of the constraints kept by them (`M q̈ + Aᵀλ = f`), in the order of
+    /// [`KeptRest::names`]: the constraints' generalized reactions at rest are `−Aᵀλ` (empty
+    /// without such constraints).
+    pub multipliers: Vec<f64>,
+    /// The multipliers' exact values, when known.
+    pub exact_multipliers: Option<Vec<Expr>>,
 }
 
 /// The equilibria found, and how.
@@ -204,6 +230,39 @@ pub fn steady_equations(
             names: equations.constraint_names().to_vec(),
         });
     }
+    build_rest(equations, spinning, None)
+}
+
+/// [`steady_equations`] of a system whose constraints may be kept by multipliers: then the
+/// rest equations are `f(q, 0) − A(q)ᵀλ = 0` with `Φ(q) = 0` (the holonomic constraints, read
+/// off `system`), unknowns `q` and `λ`.
+///
+/// # Errors
+/// As [`steady_equations`]; a constraint kept by a multiplier that is not holonomic, or steady
+/// motions asked for with such constraints.
+pub fn rest_equations_of(
+    system: &crate::System,
+    equations: &Equations,
+    spinning: &[String],
+) -> Result<RestEquations, EquilibriumError> {
+    if equations.constraint_names().is_empty() {
+        return steady_equations(equations, spinning);
+    }
+    if !spinning.is_empty() {
+        return Err(EquilibriumError::SteadyWithMultipliers {
+            names: equations.constraint_names().to_vec(),
+        });
+    }
+    let kept = crate::kkt::kept_constraints(system, equations)?;
+    build_rest(equations, &[], Some(kept))
+}
+
+/// The rest equations, with the multipliers' terms `−Aᵀλ` when `kept` is given.
+fn build_rest(
+    equations: &Equations,
+    spinning: &[String],
+    kept: Option<KeptRest>,
+) -> Result<RestEquations, EquilibriumError> {
     let coordinates = equations.coordinates().to_vec();
     check_cyclic(equations, spinning)?;
     let zero_rates: Vec<(Expr, Expr)> = coordinates
@@ -221,10 +280,19 @@ pub fn steady_equations(
     let residuals: Vec<Expr> = equations
         .forcing()
         .iter()
-        .map(|f| f.subs(&zero_rates).normal())
+        .enumerate()
+        .map(|(j, f)| {
+            let reaction = kept.as_ref().map_or(Expr::zero(), |k| k.reaction(j));
+            (f.subs(&zero_rates) - reaction).normal()
+        })
         .collect();
     if let Some(t) = Expr::time().as_symbol() {
-        if residuals.iter().any(|r| !r.diff(t).is_zero()) {
+        let functions = kept.as_ref().map_or(&[][..], |k| &k.functions[..]);
+        if residuals
+            .iter()
+            .chain(functions)
+            .any(|r| !r.diff(t).is_zero())
+        {
             return Err(EquilibriumError::TimeDependent);
         }
     }
@@ -241,10 +309,17 @@ pub fn steady_equations(
     let mut all = residuals.clone();
     all.push(equations.potential_energy());
     all.extend(equations.mass_matrix().iter().flatten().copied());
+    let functions = kept.as_ref().map_or(&[][..], |k| &k.functions[..]);
+    all.extend(functions.iter().copied());
     let periodic: Vec<bool> = coordinates.iter().map(|q| is_angle(&all, q)).collect();
     let free: Vec<bool> = symbols
         .iter()
-        .map(|q| residuals.iter().all(|r| r.diff(*q).is_zero()))
+        .map(|q| {
+            residuals
+                .iter()
+                .chain(functions)
+                .all(|r| r.diff(*q).is_zero())
+        })
         .collect();
     let bound: Vec<Symbol> = symbols
         .iter()
@@ -252,8 +327,12 @@ pub fn steady_equations(
         .filter(|(_, f)| !**f)
         .map(|(q, _)| *q)
         .collect();
-    let exact = solve_in_blocks(&residuals, &bound).map(|b| full_branches(b, &symbols, &free));
-    let polynomial = if exact.is_none() {
+    let mut kept = kept;
+    let exact = match &mut kept {
+        None => solve_in_blocks(&residuals, &bound).map(|b| full_branches(b, &symbols, &free)),
+        Some(k) => crate::kkt::exact_branches(&residuals, k, &symbols, &free),
+    };
+    let polynomial = if exact.is_none() && kept.is_none() {
         single_polynomial(&residuals, &symbols, &free, &periodic)
     } else {
         None
@@ -268,6 +347,7 @@ pub fn steady_equations(
         free,
         exact,
         spinning: spinning.to_vec(),
+        constraints: kept,
     })
 }
 
@@ -295,7 +375,11 @@ fn check_cyclic(equations: &Equations, spinning: &[String]) -> Result<(), Equili
 
 /// Exact solutions as branches with a value for every coordinate: free coordinates at 0; a
 /// solution that leaves a bound coordinate without a value is dropped.
-fn full_branches(solutions: Vec<Partial>, symbols: &[Symbol], free: &[bool]) -> Vec<Branch> {
+pub(crate) fn full_branches(
+    solutions: Vec<Partial>,
+    symbols: &[Symbol],
+    free: &[bool],
+) -> Vec<Branch> {
     solutions
         .into_iter()
         .filter_map(|b| {
@@ -313,6 +397,7 @@ fn full_branches(solutions: Vec<Partial>, symbols: &[Symbol], free: &[bool]) -> 
             Some(Branch {
                 values,
                 conditions: in_stable_order(b.conditions),
+                multipliers: Vec::new(),
             })
         })
         .collect()
@@ -341,7 +426,7 @@ fn single_polynomial(
 /// The conditions of a branch in an order that does not depend on how the solve went (which
 /// block came first, which arena ids the expressions got): by their SymPy text, duplicates
 /// dropped. Reports print them in this order.
-fn in_stable_order(conditions: Vec<Condition>) -> Vec<Condition> {
+pub(crate) fn in_stable_order(conditions: Vec<Condition>) -> Vec<Condition> {
     let key = |c: &Condition| {
         let (tag, e) = match c {
             Condition::AbsAtMostOne(e) => (0, e),
@@ -360,9 +445,9 @@ fn in_stable_order(conditions: Vec<Condition>) -> Vec<Condition> {
 
 /// A partial exact solution.
 #[derive(Clone, Debug, Default)]
-struct Partial {
-    values: HashMap<Symbol, Expr>,
-    conditions: Vec<Condition>,
+pub(crate) struct Partial {
+    pub(crate) values: HashMap<Symbol, Expr>,
+    pub(crate) conditions: Vec<Condition>,
 }
 
 /// At most this many exact branches are listed: beyond, the equilibria are searched for
@@ -373,7 +458,7 @@ const MAX_BRANCHES: usize = 4096;
 /// unknown are solved apart and their branches combined, so that the work grows with the
 /// number of equilibria and not with its power. `None` when a block cannot be solved exactly
 /// or there are more than [`MAX_BRANCHES`] branches.
-fn solve_in_blocks(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Partial>> {
+pub(crate) fn solve_in_blocks(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Partial>> {
     let mut combined = vec![Partial::default()];
     for (block_equations, block_unknowns) in blocks(equations, unknowns) {
         let mut budget = MAX_BRANCHES;
@@ -543,7 +628,7 @@ pub fn environment(values: &Values) -> impl Fn(Symbol) -> Option<f64> + '_ {
 }
 
 /// Evaluates `e` with coordinates `q = x` and the given values.
-fn eval_at(e: Expr, rest: &RestEquations, x: &[f64], values: &Values) -> Option<f64> {
+pub(crate) fn eval_at(e: Expr, rest: &RestEquations, x: &[f64], values: &Values) -> Option<f64> {
     let env = |s: Symbol| {
         rest.symbols
             .iter()
@@ -557,8 +642,13 @@ fn eval_at(e: Expr, rest: &RestEquations, x: &[f64], values: &Values) -> Option<
 /// Every symbol other than the coordinates must have a value; returns the first missing one.
 pub fn check_values(rest: &RestEquations, values: &Values) -> Result<(), EquilibriumError> {
     for e in rest.residuals.iter().chain(rest.jacobian.iter().flatten()) {
+        let multiplier = |s: Symbol| {
+            rest.constraints
+                .as_ref()
+                .is_some_and(|k| k.multipliers.iter().any(|m| m.as_symbol() == Some(s)))
+        };
         let env = |s: Symbol| {
-            if rest.symbols.contains(&s) {
+            if rest.symbols.contains(&s) || multiplier(s) {
                 Some(0.123_456_7)
             } else {
                 values.get(s.name()).copied()
@@ -572,7 +662,7 @@ pub fn check_values(rest: &RestEquations, values: &Values) -> Result<(), Equilib
 }
 
 /// Wraps the periodic coordinates into (−π, π].
-fn wrap(rest: &RestEquations, x: &mut [f64]) {
+pub(crate) fn wrap(rest: &RestEquations, x: &mut [f64]) {
     for (v, p) in x.iter_mut().zip(&rest.periodic) {
         if *p {
             *v = numeric::roots::wrap_angle(*v);
@@ -581,7 +671,7 @@ fn wrap(rest: &RestEquations, x: &mut [f64]) {
 }
 
 /// Whether `x` satisfies the rest equations to rounding.
-fn is_rest_state(rest: &RestEquations, x: &[f64], values: &Values) -> bool {
+pub(crate) fn is_rest_state(rest: &RestEquations, x: &[f64], values: &Values) -> bool {
     rest.residuals.iter().enumerate().all(|(i, r)| {
         let Some(v) = eval_at(*r, rest, x, values) else {
             return false;
@@ -605,7 +695,23 @@ pub fn find_equilibria(
 ) -> Result<EquilibriumSet, EquilibriumError> {
     check_values(rest, values)?;
     let bounds = search_box(rest, bounds);
-    let (mut found, method) = if let Some(branches) = &rest.exact {
+    let (mut found, method) = if let Some(kept) = &rest.constraints {
+        let env = environment(values);
+        let degenerate = kept.degenerate_when.iter().any(|e| {
+            e.eval(&env)
+                .map_or(true, |v| v.abs() <= 1e-12 * (1.0 + max_value(values)))
+        });
+        match rest.exact.as_ref().filter(|_| !degenerate) {
+            Some(branches) => (
+                crate::kkt::exact_kkt_equilibria(rest, kept, branches, values),
+                Method::Exact,
+            ),
+            None => (
+                kkt_equilibria(rest, kept, values, &bounds),
+                Method::MultistartNewton,
+            ),
+        }
+    } else if let Some(branches) = &rest.exact {
         (exact_equilibria(rest, branches, values), Method::Exact)
     } else if let Some(roots) = rest
         .polynomial
@@ -636,6 +742,11 @@ pub fn find_equilibria(
         bounds,
         repeated: Vec::new(),
     })
+}
+
+/// The largest magnitude among the values (the scale of a degenerate-case test).
+fn max_value(values: &Values) -> f64 {
+    values.values().fold(0.0_f64, |m, v| m.max(v.abs()))
 }
 
 /// The search box: angles over a turn, other coordinates over their given range (a missing or
@@ -682,6 +793,8 @@ fn exact_equilibria(
                 values: x,
                 exact: Some(b.values.clone()),
                 conditions: b.conditions.clone(),
+                multipliers: Vec::new(),
+                exact_multipliers: None,
             },
         );
     }
@@ -751,6 +864,8 @@ fn numeric_equilibria(
             values: x,
             exact: None,
             conditions: Vec::new(),
+            multipliers: Vec::new(),
+            exact_multipliers: None,
         })
         .collect();
     let method = if active.len() == 1 {
@@ -777,7 +892,7 @@ fn add_if_new(
     }
 }
 
-fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
+pub(crate) fn same_point(a: &[f64], b: &[f64], periodic: &[bool]) -> bool {
     a.iter().zip(b).zip(periodic).all(|((x, y), p)| {
         let d = if *p {
             numeric::roots::wrap_angle(x - y)
@@ -846,6 +961,8 @@ fn polynomial_equilibria(
                 values: x,
                 exact: None,
                 conditions: Vec::new(),
+                multipliers: Vec::new(),
+                exact_multipliers: None,
             },
         );
     }

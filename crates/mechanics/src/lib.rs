@@ -36,6 +36,7 @@ mod constraint_rank;
 mod equations;
 pub mod equilibria;
 pub mod kane;
+mod kkt;
 pub mod linearize;
 mod polynomial_rest;
 mod reactions;
@@ -48,6 +49,7 @@ pub use equations::{
     angular_velocity, derive, derive_without_first_integrals, Elimination, Equations,
     FirstIntegral, MechanicsError, Part,
 };
+pub use kkt::{null_space, KeptRest};
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{
     reactions, reactions_of, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release,

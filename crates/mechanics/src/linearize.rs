@@ -210,6 +210,29 @@ pub struct Linearized {
     pub criterion: Criterion,
     /// Eigenvalues of the Hessian of the effective potential, when Lagrange–Dirichlet applied.
     pub hessian_eigenvalues: Option<Vec<f64>>,
+    /// With constraints kept by multipliers: the linearization in independent coordinates
+    /// `δq = N y` along the directions the constraints allow, from which `A`, the
+    /// eigenvalues, the frequencies and the stability come (`m0`, `c0`, `k0`, `b0` stay the
+    /// full matrices, `k0` with the constraints' curvature; `modes` are `N v`, in all the
+    /// coordinates).
+    pub reduced: Option<Reduced>,
+}
+
+/// The linearization on the constraint manifold at an equilibrium: `N` an orthonormal basis
+/// of the null space of `A(q0)` (n × r, r = n − rank A), `δq = N y`, and
+/// `NᵀM0N ÿ + NᵀC0N ẏ + NᵀK0N y = NᵀB0 δu` with `K0 = −∂(f − Aᵀλ)/∂q`.
+#[derive(Clone, Debug)]
+pub struct Reduced {
+    /// The columns of `N`, each with one entry per coordinate.
+    pub basis: Vec<Vec<f64>>,
+    /// `NᵀM0N` (r × r).
+    pub mass: Vec<Vec<f64>>,
+    /// `NᵀC0N`.
+    pub damping: Vec<Vec<f64>>,
+    /// `NᵀK0N`.
+    pub stiffness: Vec<Vec<f64>>,
+    /// `NᵀB0` (r × inputs).
+    pub input: Vec<Vec<f64>>,
 }
 
 /// One mode's part of the free response: `shape · (a c(t) + b s(t))` with `(c, s)` =
@@ -293,6 +316,15 @@ pub fn linear_model(equations: &Equations, rest: &RestEquations, inputs: &[Strin
         for (row, load_row) in hessian.iter_mut().zip(loads) {
             for (h, l) in row.iter_mut().zip(load_row) {
                 *h = (*h + l).normal();
+            }
+        }
+    }
+    if let Some(kept) = &rest.constraints {
+        // On the constraint manifold the potential's Hessian gains the constraints' curvature
+        // weighted by the multipliers: the Hessian of `V + λᵀΦ`, as `K0` does.
+        for (row, curved) in hessian.iter_mut().zip(kept.curvature(&rest.symbols)) {
+            for (h, c) in row.iter_mut().zip(curved) {
+                *h = (*h + c).normal();
             }
         }
     }
@@ -477,7 +509,9 @@ pub fn linearize_at(
     let k0 = evaluate_matrix(&model.stiffness, rest, q0, values)?;
     let b0 = evaluate_matrix(&model.input, rest, q0, values)?;
     let hessian = evaluate_matrix(&model.hessian, rest, q0, values)?;
-    let exact = exact.map(|x| {
+    // The stiffness of a constrained system holds the multipliers' symbols: its exact form
+    // would need their exact values too, so only the numbers are given.
+    let exact = exact.filter(|_| rest.constraints.is_none()).map(|x| {
         [
             substitute(&model.mass, rest, x),
             substitute(&model.damping, rest, x),
@@ -485,19 +519,35 @@ pub fn linearize_at(
             substitute(&model.input, rest, x),
         ]
     });
-    let a = numeric::eigen::state_matrix(&m0, &c0, &k0)?;
+    let reduced = match &rest.constraints {
+        Some(kept) => Some(reduce(kept, rest, q0, values, [&m0, &c0, &k0, &b0])?),
+        None => None,
+    };
+    let basis = reduced.as_ref().map(|r| r.basis.clone());
+    let project = |m: &[Vec<f64>]| match &basis {
+        Some(n) => congruence(n, m),
+        None => m.to_vec(),
+    };
+    let (mr, cr, kr, hr) = (project(&m0), project(&c0), project(&k0), project(&hessian));
+    let br = reduced
+        .as_ref()
+        .map_or_else(|| b0.clone(), |r| r.input.clone());
+    let a = numeric::eigen::state_matrix(&mr, &cr, &kr)?;
     let b = if model.inputs.is_empty() {
         vec![Vec::new(); a.len()]
     } else {
-        numeric::eigen::state_input(&m0, &b0)?
+        numeric::eigen::state_input(&mr, &br)?
     };
     let eigenvalues = numeric::eigen::eigenvalues(&a)?;
-    let (omega_squared, modes) = if gyroscopic(&c0) {
+    let (omega_squared, modes) = if gyroscopic(&cr) {
         // `K0 x = ω² M0 x` ignores the coupling: the frequencies are the state matrix's.
         (Some(frequencies_of_state_matrix(&eigenvalues)), Vec::new())
     } else {
-        match numeric::eigen::symmetric_generalized(&k0, &m0) {
-            Ok(e) => (Some(e.values), e.modes),
+        match numeric::eigen::symmetric_generalized(&kr, &mr) {
+            Ok(e) => (
+                Some(e.values),
+                in_all_coordinates(basis.as_deref(), e.modes),
+            ),
             Err(_) => (None, Vec::new()),
         }
     };
@@ -519,9 +569,9 @@ pub fn linearize_at(
 
     let (mut stable, mut criterion, mut hessian_eigenvalues) = match &model.routh {
         Some(r) => decide_steady(r, rest, q0, values, &eigenvalues)?,
-        None => decide(&m0, &c0, &k0, &hessian, &eigenvalues)?,
+        None => decide(&mr, &cr, &kr, &hr, &eigenvalues)?,
     };
-    if stable.is_none() && model.routh.is_none() {
+    if stable.is_none() && model.routh.is_none() && reduced.is_none() {
         if let Some((s, c, h)) = decide_reduced(rest, &m0, &c0, &k0, &hessian)? {
             (stable, criterion, hessian_eigenvalues) = (s, c, h);
         }
@@ -542,6 +592,77 @@ pub fn linearize_at(
         stable,
         criterion,
         hessian_eigenvalues,
+        reduced,
+    })
+}
+
+/// `Nᵀ X N` for the basis `N` given by its columns.
+fn congruence(basis: &[Vec<f64>], x: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    basis
+        .iter()
+        .map(|u| {
+            basis
+                .iter()
+                .map(|v| {
+                    (0..u.len())
+                        .map(|i| u[i] * (0..v.len()).map(|j| x[i][j] * v[j]).sum::<f64>())
+                        .sum()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The modes `v` of the reduced system as `N v`, one entry per coordinate.
+fn in_all_coordinates(basis: Option<&[Vec<f64>]>, modes: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    let Some(basis) = basis else {
+        return modes;
+    };
+    let n = basis.first().map_or(0, Vec::len);
+    modes
+        .iter()
+        .map(|v| {
+            (0..n)
+                .map(|i| basis.iter().zip(v).map(|(col, y)| col[i] * y).sum())
+                .collect()
+        })
+        .collect()
+}
+
+/// The linearization on the constraint manifold at `q0` (see [`Reduced`]).
+fn reduce(
+    kept: &crate::KeptRest,
+    rest: &RestEquations,
+    q0: &[f64],
+    values: &Values,
+    [m0, c0, k0, b0]: [&[Vec<f64>]; 4],
+) -> Result<Reduced, LinearizeError> {
+    let a = kept.gradient_at(rest, q0, values).ok_or_else(|| {
+        LinearizeError::Evaluation("the constraints' gradient at the equilibrium".to_owned())
+    })?;
+    let basis = crate::kkt::null_space(&a, q0.len()).ok_or_else(|| {
+        LinearizeError::Evaluation("the null space of the constraints' gradient".to_owned())
+    })?;
+    if basis.is_empty() {
+        return Err(LinearizeError::Evaluation(
+            "the constraints fix every coordinate: no motion to linearize".to_owned(),
+        ));
+    }
+    let input = basis
+        .iter()
+        .map(|u| {
+            let columns = b0.first().map_or(0, Vec::len);
+            (0..columns)
+                .map(|j| u.iter().zip(b0).map(|(x, row)| x * row[j]).sum())
+                .collect()
+        })
+        .collect();
+    Ok(Reduced {
+        mass: congruence(&basis, m0),
+        damping: congruence(&basis, c0),
+        stiffness: congruence(&basis, k0),
+        input,
+        basis,
     })
 }
 

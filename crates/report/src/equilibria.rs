@@ -74,6 +74,7 @@ pub fn equilibria_array(
             json!({
                 "index": i,
                 "values": by_coordinate(&rest.coordinates, &e.values),
+                "multipliers": multipliers_json(rest, &e.multipliers, e.exact_multipliers.as_deref()),
                 "also_at": also_at,
                 "exact": exact,
                 "conditions": e.conditions.iter().map(|c| condition_text(c, to_sympy)).collect::<Vec<_>>(),
@@ -81,6 +82,63 @@ pub fn equilibria_array(
                 "criterion": criterion,
                 "eigenvalues": eigenvalues,
             })
+        })
+        .collect()
+}
+
+/// The constraints kept by multipliers: `[{"name", "multiplier", "function"}]`.
+fn constraints_json(rest: &RestEquations) -> Value {
+    let Some(kept) = &rest.constraints else {
+        return json!([]);
+    };
+    kept.names
+        .iter()
+        .zip(&kept.multipliers)
+        .zip(&kept.functions)
+        .map(|((name, symbol), f)| {
+            json!({ "name": name, "multiplier": to_sympy(*symbol), "function": to_sympy(*f) })
+        })
+        .collect()
+}
+
+/// The multipliers of the constraints kept by them at an equilibrium, by constraint:
+/// `[{"constraint", "symbol", "value", "exact"}]` (empty without such constraints).
+fn multipliers_json(rest: &RestEquations, values: &[f64], exact: Option<&[Expr]>) -> Value {
+    let Some(kept) = &rest.constraints else {
+        return json!([]);
+    };
+    kept.names
+        .iter()
+        .zip(&kept.multipliers)
+        .zip(values)
+        .enumerate()
+        .map(|(k, ((name, symbol), value))| {
+            json!({
+                "constraint": name,
+                "symbol": to_sympy(*symbol),
+                "value": value,
+                "exact": exact.and_then(|x| x.get(k)).map(|e| to_sympy(*e)),
+            })
+        })
+        .collect()
+}
+
+/// The lines of the multipliers at an equilibrium: `λ1 (loop_x) = …`.
+fn multipliers_text(rest: &RestEquations, values: &[f64], exact: Option<&[Expr]>) -> Vec<String> {
+    let Some(kept) = &rest.constraints else {
+        return Vec::new();
+    };
+    kept.names
+        .iter()
+        .zip(&kept.multipliers)
+        .zip(values)
+        .enumerate()
+        .map(|(k, ((name, symbol), value))| {
+            let exact = exact
+                .and_then(|x| x.get(k))
+                .map(|e| format!(" = {}", to_unicode(*e)))
+                .unwrap_or_default();
+            format!("{} ({name}){exact} = {}", to_unicode(*symbol), six(*value))
         })
         .collect()
 }
@@ -100,6 +158,7 @@ pub fn equilibria_json(
         "free": rest.coordinates.iter().zip(&rest.free).filter(|(_, f)| **f).map(|(q, _)| q.clone()).collect::<Vec<_>>(),
         "method": set.method.name(),
         "complete": set.method.complete(),
+        "constraints": constraints_json(rest),
         "bounds": set.bounds.iter().map(|(a, b)| json!([a, b])).collect::<Vec<_>>(),
         "equilibria": equilibria_array(rest, set, lin),
     })
@@ -133,6 +192,13 @@ pub fn linearized_entry(
         "modes": l.modes,
         "damping_ratios": l.damping_ratios,
         "eigenvalues": eigen_pairs(&l.eigenvalues),
+        "reduced": l.reduced.as_ref().map(|r| json!({
+            "basis": r.basis,
+            "M": matrix(&r.mass),
+            "C": matrix(&r.damping),
+            "K": matrix(&r.stiffness),
+            "B": matrix(&r.input),
+        })),
         "controllability_rank": l.controllability_rank,
         "state_dimension": l.a.len(),
         "stable": l.stable,
@@ -222,7 +288,12 @@ pub fn equilibria_text(
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "rest equations f(q, 0) = 0 ({}):",
+        "rest equations {} ({}):",
+        if rest.constraints.is_some() {
+            "f(q, 0) − A(q)ᵀλ = 0, Φ(q) = 0"
+        } else {
+            "f(q, 0) = 0"
+        },
         if set.method.complete() {
             "solved exactly; this list is complete"
         } else {
@@ -231,6 +302,21 @@ pub fn equilibria_text(
     );
     for (q, r) in rest.coordinates.iter().zip(&rest.residuals) {
         let _ = writeln!(out, "  [{q}]  0 = {}", to_unicode(*r));
+    }
+    if let Some(kept) = &rest.constraints {
+        for ((name, symbol), f) in kept
+            .names
+            .iter()
+            .zip(&kept.multipliers)
+            .zip(&kept.functions)
+        {
+            let _ = writeln!(
+                out,
+                "  [{name}, {}]  0 = {}",
+                to_unicode(*symbol),
+                to_unicode(*f)
+            );
+        }
     }
     let _ = writeln!(out, "method: {}", set.method.name());
     if set.equilibria.is_empty() {
@@ -249,6 +335,10 @@ pub fn equilibria_text(
         );
         for c in &e.conditions {
             let _ = writeln!(out, "    exists when {}", condition_text(c, to_unicode));
+        }
+        let exact_multipliers = e.exact_multipliers.as_deref();
+        for line in multipliers_text(rest, &e.multipliers, exact_multipliers) {
+            let _ = writeln!(out, "    multiplier {line}");
         }
         for r in set.repeated.iter().filter(|r| r.same_as == i) {
             let other = point_text(rest, &r.values, None);
@@ -286,6 +376,34 @@ fn matrix_text(name: &str, m: &[Vec<f64>]) -> String {
         })
         .collect();
     format!("  {name} =\n    [{}]\n", rows.join("]\n    ["))
+}
+
+/// The linearization in independent coordinates `δq = N y` of a constrained system.
+fn reduced_text(
+    out: &mut String,
+    rest: &RestEquations,
+    r: &mechanics::linearize::Reduced,
+    multipliers: &[f64],
+    inputs: bool,
+) {
+    for line in multipliers_text(rest, multipliers, None) {
+        let _ = writeln!(out, "  multiplier {line}");
+    }
+    let _ = writeln!(
+        out,
+        "  on the constraints: δq = N y, N an orthonormal basis of the null space of A(q0) \
+         (K0 includes the constraints' curvature Σ λ ∂²Φ/∂q²)"
+    );
+    let columns: Vec<Vec<f64>> = (0..rest.coordinates.len())
+        .map(|i| r.basis.iter().map(|u| u[i]).collect())
+        .collect();
+    out.push_str(&matrix_text("N", &columns));
+    out.push_str(&matrix_text("NᵀM0N", &r.mass));
+    out.push_str(&matrix_text("NᵀC0N", &r.damping));
+    out.push_str(&matrix_text("NᵀK0N", &r.stiffness));
+    if inputs {
+        out.push_str(&matrix_text("NᵀB0", &r.input));
+    }
 }
 
 /// The text of `lagrange linearize`.
@@ -339,6 +457,9 @@ pub fn linearized_text(
         out.push_str(&matrix_text("K0", &l.k0));
         if !inputs.is_empty() {
             out.push_str(&matrix_text("B0", &l.b0));
+        }
+        if let Some(r) = &l.reduced {
+            reduced_text(&mut out, rest, r, &e.multipliers, !inputs.is_empty());
         }
         let freqs: Vec<String> = l
             .frequencies()

@@ -37,7 +37,12 @@ fn equilibria_section(
 ) -> Section {
     let mut s = Section::new("Equilibria and their stability", 2);
     s.paragraph(format!(
-        "Rest states: q̇ = 0, q̈ = 0 with the inputs held at their values, so f(q, 0) = 0 — {}.",
+        "Rest states: q̇ = 0, q̈ = 0 with the inputs held at their values, so {} — {}.",
+        if rest.constraints.is_some() {
+            "f(q, 0) − A(q)ᵀλ = 0 and Φ(q) = 0, for q and the multipliers λ"
+        } else {
+            "f(q, 0) = 0"
+        },
         if set.method.complete() {
             match set.method {
                 mechanics::equilibria::Method::Exact => {
@@ -65,6 +70,22 @@ fn equilibria_section(
                     notation.math(*r),
                 )
             })
+            .chain(rest.constraints.iter().flat_map(|kept| {
+                kept.names
+                    .iter()
+                    .zip(&kept.multipliers)
+                    .zip(&kept.functions)
+                    .map(|((name, lambda), f)| {
+                        let lambda = notation.math(*lambda).unicode;
+                        Equation::new(
+                            Math::label(
+                                format!("0 (constraint {name}, {lambda})"),
+                                "0".to_string(),
+                            ),
+                            notation.math(*f),
+                        )
+                    })
+            }))
             .collect(),
     );
     if set.equilibria.is_empty() {
@@ -89,6 +110,14 @@ fn equilibria_table(
 ) -> Block {
     let mut header = vec!["#".to_string()];
     header.extend(rest.coordinates.iter().map(|q| coordinate(q).unicode));
+    if let Some(kept) = &rest.constraints {
+        header.extend(
+            kept.names
+                .iter()
+                .zip(&kept.multipliers)
+                .map(|(name, l)| format!("{} ({name})", notation.math(*l).unicode)),
+        );
+    }
     header.push("stability".to_string());
     let rows: Vec<Vec<Cell>> = set
         .equilibria
@@ -111,6 +140,12 @@ fn equilibria_table(
                     }
                     _ => Cell::Math(Math::label(format!("{v:.4}"), format!("{v:.4}"))),
                 });
+            }
+            for v in &e.multipliers {
+                row.push(Cell::Math(Math::label(
+                    format!("{v:.4}"),
+                    format!("{v:.4}"),
+                )));
             }
             match l {
                 // The criterion and its reasoning follow the table.

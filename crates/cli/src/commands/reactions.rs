@@ -12,7 +12,7 @@ pub fn run(path: &Path, format: ResultFormat, set: &[String]) -> Result<Exit, Fa
     let analysis = super::load(path, set)?;
     let computed = match analysis.reactions() {
         // Too large for closed form: the multipliers at the initial state, in numbers.
-        Err(e) if e.is_too_large_for_closed_form() && format == EomFormat::Text => {
+        Err(e) if e.is_too_large_for_closed_form() && format == ResultFormat::Text => {
             let numeric = analysis
                 .multipliers_at_start()
                 .map_err(|e| Failure::of(e, path))?;
