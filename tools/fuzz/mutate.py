@@ -74,9 +74,15 @@ TOKENS = [
 ]
 
 
+# Models whose Lagrange route (eom, solve, reactions) needs more processor time than a run
+# here has before it stops at its work limit: the Whipple bicycle's `norm()` contact takes
+# about 11 s to be refused (issue 18; it is solved by `linearize`, Kane's route, in 0.06 s).
+SLOW_EXAMPLES = {"whipple-bicycle.lag"}
+
+
 def load_examples():
-    """The example models, sorted, as (relative path, bytes)."""
-    paths = sorted((ROOT / "examples").rglob("*.lag"))
+    """The example models, sorted, as (relative path, bytes), without SLOW_EXAMPLES."""
+    paths = sorted(p for p in (ROOT / "examples").rglob("*.lag") if p.name not in SLOW_EXAMPLES)
     return [(p.relative_to(ROOT).as_posix(), p.read_bytes()) for p in paths]
 
 
