@@ -60,8 +60,14 @@ fn a_derivation_past_a_limit_names_the_statement_and_can_be_raised() {
 #[test]
 fn a_reaction_or_equilibrium_search_past_a_limit_is_a_work_limit_error() {
     let model = format!(
-        "{}reaction pin: hinge origin on P\n",
-        long_angle_model(6).replace("point P = l*", "point P = l*N.y + l*")
+        "{}reaction pin: hinge origin on P, {}\n",
+        long_angle_model(6).replace("point P = l*", "point P = l*N.y + l*"),
+        // Every particle the coordinates tie to P is released with it (issue 17: a load
+        // through a shared coordinate is never silently left out).
+        (1..=6)
+            .map(|i| format!("Rq{i}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     let mut analysis = Analysis::from_text(&model).expect("a valid model");
     analysis.set_work_limits(WorkLimits::default().with_max_terms(100));

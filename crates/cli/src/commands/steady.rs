@@ -19,7 +19,9 @@ pub fn run(
 ) -> Result<Exit, Failure> {
     let as_json = options.format == ResultFormat::Json;
     if options.sweep.len() > 1 {
-        return Err(Failure::input("--sweep takes one parameter about a steady motion"));
+        return Err(Failure::input(
+            "--sweep takes one parameter about a steady motion",
+        ));
     }
     if let [sweep] = options.sweep.as_slice() {
         let range = analysis
@@ -50,7 +52,11 @@ pub fn run(
         .and_then(|v| analysis.canonical_form(&v).ok());
     let coordinates = analysis.system().coordinates();
     if as_json {
-        print(json_text(&steady_json(coordinates, &lin, canonical.as_ref())))?;
+        print(json_text(&steady_json(
+            coordinates,
+            &lin,
+            canonical.as_ref(),
+        )))?;
     } else {
         println(&steady_text(coordinates, &lin, canonical.as_ref()))?;
     }
