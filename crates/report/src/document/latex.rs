@@ -54,7 +54,7 @@ impl Document {
                         let _ = writeln!(
                             out,
                             "\\begin{{center}}\n\\begin{{tabular}}{{{}}}",
-                            "l".repeat(header.len())
+                            column_spec(header, rows)
                         );
                         let titles: Vec<String> = header.iter().map(|h| latex_text(h)).collect();
                         let _ = writeln!(out, "\\hline\n{} \\\\\n\\hline", titles.join(" & "));
@@ -100,6 +100,52 @@ impl Document {
     }
 }
 
+/// Glyphs of text a table row may hold before its columns wrap.
+const TABLE_LINE: usize = 80;
+
+/// The columns of a table: `l` when a row fits the line, else paragraph columns `p{…}` whose
+/// widths share the line in proportion to each column's longest cell (a long cell wraps).
+fn column_spec(header: &[String], rows: &[Vec<Cell>]) -> String {
+    let glyphs = |c: &Cell| match c {
+        Cell::Text(t) => t.chars().count(),
+        Cell::Math(m) => m.unicode.chars().count(),
+    };
+    let widths: Vec<usize> = (0..header.len())
+        .map(|j| {
+            let longest = rows.iter().filter_map(|r| r.get(j)).map(glyphs).max();
+            longest.unwrap_or(0).max(header[j].chars().count()).max(1)
+        })
+        .collect();
+    let total: usize = widths.iter().sum();
+    if total <= TABLE_LINE {
+        return "l".repeat(header.len());
+    }
+    // The columns' padding (2 × 6 pt each) comes off the line first; no column narrower
+    // than its longest word (a glyph of 11 pt text is about 1.25 % of the line).
+    let share = 0.95 - 0.025 * header.len() as f64;
+    let longest_word = |j: usize| {
+        let words = |t: &str| t.split_whitespace().map(|w| w.chars().count()).max();
+        let cells = rows
+            .iter()
+            .filter_map(|r| r.get(j))
+            .filter_map(|c| match c {
+                Cell::Text(t) => words(t),
+                Cell::Math(m) => words(&m.unicode),
+            });
+        cells.chain(words(&header[j])).max().unwrap_or(1)
+    };
+    let fractions: Vec<f64> = widths
+        .iter()
+        .enumerate()
+        .map(|(j, &w)| (share * w as f64 / total as f64).max(0.0125 * longest_word(j) as f64))
+        .collect();
+    let scale = (share / fractions.iter().sum::<f64>()).min(1.0);
+    fractions
+        .iter()
+        .map(|f| format!("p{{{:.3}\\linewidth}}", f * scale))
+        .collect()
+}
+
 /// Glyphs per display line (see [`visible_width`]) before a long right-hand side is broken:
 /// the text width of the LaTeX document (2 cm margins) in 10 pt mathematics, with room to spare.
 pub(super) const LATEX_LINE: usize = 72;
@@ -116,10 +162,11 @@ pub(super) fn aligned_lines(lines: &[Equation]) -> String {
 /// [`LATEX_LINE`]: the Markdown rendering breaks to a book's narrower column.
 pub(super) fn aligned_lines_to(lines: &[Equation], line: usize) -> String {
     let mut rows = Vec::new();
+    // A long left-hand side (an equation of motion `… = 0`) is broken like a right-hand
+    // side: the whole equation goes right of the alignment point — and then every row of
+    // the display does, since a left-hand side left of that point would widen them all.
+    let long_lhs = lines.iter().any(|e| visible_width(&e.lhs.latex) > line / 2);
     for e in lines {
-        // A long left-hand side (an equation of motion `… = 0`) is broken like a right-hand
-        // side: the whole equation goes right of the alignment point.
-        let long_lhs = visible_width(&e.lhs.latex) > line / 2;
         let (head, body) = if long_lhs {
             (
                 "& ".to_string(),
