@@ -110,7 +110,30 @@ impl Analysis {
     /// steady, its rates are not fixed, a singular matrix.
     pub fn steady_linearization(&self) -> Result<SteadyLinearization, Error> {
         let (system, values) = self.kane_system()?;
-        Ok(system.linearize_steady(&self.steady_motion()?, &values)?)
+        let motion = self.steady_motion()?;
+        let linearized = system.linearize_steady(&motion, &values);
+        linearized.map_err(|e| self.at_initial_rate(e.into()))
+    }
+
+    /// A mistake of the steady motion asked for (not steady, rates not fixed), located at
+    /// the model's first `initial` rate, which asked for it; other errors as they are.
+    fn at_initial_rate(&self, error: Error) -> Error {
+        if error.kind() != crate::ErrorKind::Input {
+            return error;
+        }
+        let Some(source) = self.source() else {
+            return error;
+        };
+        let Some(rate) = source.model.initial().iter().find(|i| i.rate) else {
+            return error;
+        };
+        let at = model::line_col(&source.text, rate.value.span.start);
+        Error::Located {
+            message: format!("linearizing about the steady motion of `initial`: {error}"),
+            line: at.line,
+            column: at.column,
+            kind: crate::ErrorKind::Input,
+        }
     }
 
     /// The steady linearization at `steps` evenly spaced values of `parameter` from `from`
