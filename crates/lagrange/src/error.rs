@@ -183,6 +183,9 @@ pub enum Error {
         /// How many equilibria there are.
         count: usize,
     },
+    /// Parts of a question that do not go together.
+    #[error("{0}")]
+    Misuse(crate::question::Misuse),
     /// An output that describes one run was asked of a sweep.
     #[error("{0} one run; leave it out of a sweep")]
     OneRunOnly(OneRunOnly),
@@ -258,6 +261,7 @@ impl Error {
             | Error::FileFormat { .. }
             | Error::NoSuchEquilibrium { .. }
             | Error::Refused { .. }
+            | Error::Misuse(_)
             | Error::OneRunOnly(_) => format!("error: {self}"),
             _ => format!("error: {file}: {self}"),
         }
@@ -292,6 +296,7 @@ impl Error {
             | Error::Plot(report::PlotError::Format { .. })
             | Error::FileFormat { .. }
             | Error::NoSuchEquilibrium { .. }
+            | Error::Misuse(_)
             | Error::OneRunOnly(_) => ErrorKind::Input,
             Error::Write { .. } | Error::Plot(_) => ErrorKind::Output,
             Error::Located { kind, .. } => *kind,

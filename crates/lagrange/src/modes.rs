@@ -231,9 +231,9 @@ fn no_equilibrium(rest: &RestEquations, method: Method) -> String {
     let complete = matches!(method, Method::Exact | Method::Polynomial | Method::Scan);
     format!(
         "{} for these values: the rest equations f(q, 0) = 0 in ({}) have no solution{}, so \
-         the system never rests and no mode oscillates about a rest (`lagrange equilibria` \
-         prints the equations; `lagrange animate` without --mode shows the motion; values \
-         given with --set for which it rests, a level slope for instance, may have one)",
+         the system never rests and no mode oscillates about a rest (the equilibria's \
+         listing prints the equations; the simulated motion can be animated instead; values \
+         of the parameters for which it rests, a level slope for instance, may have one)",
         if complete {
             "the model has no equilibrium"
         } else {

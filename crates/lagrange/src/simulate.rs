@@ -76,6 +76,26 @@ pub enum Ending {
     Halted,
 }
 
+/// What a caller can change so that a run goes further ([`Ending::remedy`]); a front end
+/// names its own option for each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Remedy {
+    /// The problem is stiff: an implicit method (`sdirk`).
+    ImplicitMethod,
+    /// An implicit method if the problem is stiff, else a smaller step.
+    ImplicitMethodOrSmallerStep,
+    /// A larger step limit ([`SimulationOptions::max_steps`]).
+    MoreSteps,
+    /// A larger row limit ([`SimulationOptions::max_rows`]), or fewer rows (a longer output step).
+    MoreRows,
+    /// A larger byte limit on the output, or fewer rows.
+    MoreBytes,
+    /// Go on past the loss of a one-sided contact
+    /// ([`SimulationOptions::through_contact_loss`]).
+    ThroughContactLoss,
+}
+
 impl Ending {
     /// Reads an outcome of `simulation`.
     #[must_use]
@@ -122,6 +142,20 @@ impl Ending {
             )),
             Ending::Halted => Some(format!("the run was ended at t = {t} by its caller")),
         }
+    }
+
+    /// What would let a run that a limit or the method stopped go further, if anything would.
+    #[must_use]
+    pub fn remedy(&self) -> Option<Remedy> {
+        Some(match self {
+            Ending::Failed(Failure::Stiff { .. }) => Remedy::ImplicitMethod,
+            Ending::Failed(Failure::NotConverged { .. }) => Remedy::ImplicitMethodOrSmallerStep,
+            Ending::Failed(Failure::TooManySteps { .. }) => Remedy::MoreSteps,
+            Ending::Failed(Failure::TooManyOutputs { .. }) => Remedy::MoreRows,
+            Ending::OutputLimit { .. } => Remedy::MoreBytes,
+            Ending::ContactLost { .. } => Remedy::ThroughContactLoss,
+            _ => return None,
+        })
     }
 
     /// A short word for tables: `finished`, `event`, `contact lost: NAME`, `failed …`.

@@ -120,7 +120,7 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
             section.paragraph(format!("The plot could not be written: {error}."));
         }
         None => {
-            section.paragraph("With --out DIR the plots are written beside the report.");
+            section.paragraph("A report written into a directory has the plots beside it.");
         }
     }
     section

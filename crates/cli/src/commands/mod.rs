@@ -7,11 +7,9 @@ pub mod draw;
 mod eom;
 mod equilibria;
 mod expression;
-mod linearize_periodic;
 mod reactions;
 pub mod simulate;
 mod solve;
-mod steady;
 
 use std::path::Path;
 
@@ -35,15 +33,11 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
             options,
             equilibrium,
             initial,
-            periodic: Some(period),
-        } => linearize_periodic::run(&input, &options, equilibrium, &period, &initial),
-        Command::Linearize {
-            input,
-            options,
-            equilibrium,
-            initial,
-            periodic: None,
-        } => equilibria::run(&input, &options, equilibrium, Some(&initial)),
+            periodic,
+        } => {
+            let linearize = (&initial[..], periodic.as_deref());
+            equilibria::run(&input, &options, equilibrium, Some(linearize))
+        }
         Command::Simulate(args) => simulate::run(&args),
         Command::Draw(args) => draw::run(&args),
         Command::Animate(args) => animate::run(&args),
@@ -63,16 +57,6 @@ pub fn load(path: &Path, set: &[String]) -> Result<Analysis, Failure> {
         .set_texts(set)
         .map_err(|e| Failure::flag("--set", e))?;
     Ok(analysis)
-}
-
-/// Reads each item of a repeated flag; an error names the flag.
-pub fn each<T>(
-    items: &[String],
-    flag: &str,
-    read: impl Fn(&str) -> Result<T, lagrange::AssignmentError>,
-) -> Result<Vec<T>, Failure> {
-    let read = |item: &String| read(item).map_err(|e| Failure::input(format!("{flag} {e}")));
-    items.iter().map(read).collect()
 }
 
 /// Colour when stderr is a terminal.

@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use lagrange::{Analysis, Ending, Error, MethodName, RunFiles, SimulationOptions};
+use lagrange::{Analysis, Ending, Error, MethodName, Remedy, RunFiles, SimulationOptions};
 
 use crate::exit::{check_output, Exit, Failure};
 
@@ -174,42 +174,38 @@ pub fn run(args: &SimulateArgs) -> Result<Exit, Failure> {
     ))
 }
 
-/// The exit code of a run's ending, said on stderr when it stopped early.
+/// The exit code of a run's ending, said on stderr (with the flag that helps) when it stopped
+/// early.
 fn exit_of(ending: &Ending, t: f64) -> Exit {
     let Some(sentence) = ending.sentence(t) else {
         return Exit::Success;
     };
-    if let Ending::ContactLost { .. } = ending {
-        eprintln!("{sentence}; run with --through-contact-loss to go on regardless");
-    } else if !ending.stopped_short() {
-        eprintln!("{sentence}");
-    } else {
-        eprintln!("error: {sentence}; the rows computed up to then were written");
-        if let Some(hint) = hint(ending) {
-            eprintln!("hint: {hint}");
-        }
-        return Exit::RunFailed;
-    }
-    Exit::Success
-}
-
-/// The flag that helps with a run that a limit or the method stopped.
-fn hint(ending: &Ending) -> Option<&'static str> {
-    use lagrange::numeric::Failure as F;
-    Some(match ending {
-        Ending::Failed(F::Stiff { .. }) => "stiff: use --method sdirk",
-        Ending::Failed(F::NotConverged { .. }) => {
+    let hint = ending.remedy().map(|remedy| match remedy {
+        Remedy::ImplicitMethod => "stiff: use --method sdirk",
+        Remedy::ImplicitMethodOrSmallerStep => {
             "if stiff, use --method sdirk; else give a smaller --step"
         }
-        Ending::Failed(F::TooManySteps { .. }) => "raise the limit with --max-steps N",
-        Ending::Failed(F::TooManyOutputs { .. }) => {
+        Remedy::MoreSteps => "raise the limit with --max-steps N",
+        Remedy::MoreRows => {
             "raise the limit with --max-rows N, or write fewer rows with --output-step"
         }
-        Ending::OutputLimit { .. } => {
+        Remedy::MoreBytes => {
             "raise the limit with --max-bytes N, or write fewer rows with --output-step"
         }
-        _ => return None,
-    })
+        _ => "run with --through-contact-loss to go on regardless",
+    });
+    if !ending.stopped_short() {
+        eprintln!(
+            "{sentence}{}",
+            hint.map(|h| format!("; {h}")).unwrap_or_default()
+        );
+        return Exit::Success;
+    }
+    eprintln!("error: {sentence}; the rows computed up to then were written");
+    if let Some(hint) = hint {
+        eprintln!("hint: {hint}");
+    }
+    Exit::RunFailed
 }
 
 /// A library error, with the flag named where it comes from one.
