@@ -466,17 +466,17 @@ pub fn linearized_text(
             .iter()
             .zip(l.omega_squared.as_deref().unwrap_or(&[]))
             .map(|(f, w2)| match f {
-                Some(w) => format!("{w:.6} rad/s"),
-                None => format!("none (ω² = {w2:.6})"),
+                Some(w) => format!("{} rad/s", six(*w)),
+                None => format!("none (ω² = {})", six(*w2)),
             })
             .collect();
         let _ = writeln!(out, "  natural frequencies: {}", freqs.join(", "));
         for (k, m) in l.modes.iter().enumerate() {
-            let m: Vec<String> = m.iter().map(|v| format!("{v:.6}")).collect();
+            let m: Vec<String> = m.iter().map(|v| six(*v)).collect();
             let _ = writeln!(out, "  mode {}: ({})", k + 1, m.join(", "));
         }
         if !l.damping_ratios.is_empty() {
-            let z: Vec<String> = l.damping_ratios.iter().map(|v| format!("{v:.6}")).collect();
+            let z: Vec<String> = l.damping_ratios.iter().map(|v| six(*v)).collect();
             let _ = writeln!(out, "  damping ratios: {}", z.join(", "));
         }
         let eig: Vec<String> = l
