@@ -98,11 +98,11 @@ impl PoleStability {
 
 /// A pole of the coordinates at `q`: `M(q)` has one null direction `null`, whose largest
 /// entry is the azimuth's, and the polar angle's change makes `M` regular.
-struct Pole {
+pub(crate) struct Pole {
     symbols: Vec<Symbol>,
     null: Vec<f64>,
-    alpha: usize,
-    polar: usize,
+    pub(crate) alpha: usize,
+    pub(crate) polar: usize,
 }
 
 impl Pole {
@@ -110,7 +110,12 @@ impl Pole {
     /// entry of the null vector that is not in `turning`: a chart whose `(u, v)` turn with a
     /// spinning coordinate would be regular too, but rotating (its matrices then hold the
     /// frame's Coriolis and centrifugal terms).
-    fn find(equations: &Equations, q: &[f64], values: &Values, turning: &[usize]) -> Option<Pole> {
+    pub(crate) fn find(
+        equations: &Equations,
+        q: &[f64],
+        values: &Values,
+        turning: &[usize],
+    ) -> Option<Pole> {
         let names = equations.coordinates();
         let n = names.len();
         let symbols: Vec<Symbol> = names
@@ -573,7 +578,7 @@ fn routh(matrices: &[Vec<Vec<f64>>; 3], cyclic: &[bool]) -> Option<[Vec<Vec<f64>
 
 /// The Lagrangian in the regular chart `s = (u, v, y…)` about a pole, compiled: `θ = θ* + r`,
 /// `α = α* + atan2(v, u)`, `q_k = q*_k + y_k + c_k (α − α*)`.
-struct ChartLagrangian {
+pub(crate) struct ChartLagrangian {
     tape: numeric::Tape,
     registers: std::cell::RefCell<Vec<f64>>,
     inputs: std::cell::RefCell<Vec<f64>>,
@@ -586,7 +591,7 @@ struct ChartLagrangian {
 }
 
 impl ChartLagrangian {
-    fn new(
+    pub(crate) fn new(
         equations: &Equations,
         pole: &Pole,
         q: &[f64],
@@ -637,6 +642,18 @@ impl ChartLagrangian {
         })
     }
 
+    /// The name of the chart's coordinate `i ≥ 2`: the model's, or `β − c α` when it turns
+    /// with the azimuth.
+    pub(crate) fn name(&self, i: usize, names: &[String]) -> String {
+        let (k, companion) = (self.original[i], self.companions[i]);
+        if companion.abs() < 1e-12 {
+            return names[k].clone();
+        }
+        let sign = if companion < 0.0 { "+" } else { "−" };
+        let alpha = &names[self.original[1]];
+        format!("{} {sign} {} {alpha}", names[k], number(companion.abs()))
+    }
+
     /// `L` at the chart's state `(s, ṡ)` (not at the pole itself: `r > 0`).
     fn at(&self, s: &[f64], rates: &[f64]) -> f64 {
         let n = s.len();
@@ -664,17 +681,22 @@ impl ChartLagrangian {
 
     /// `[∂²L/∂ṡ∂ṡ, ∂²L/∂ṡ∂s, ∂²L/∂s∂s]` at `(0, ṡ₀)`, by central differences about four
     /// points at [`OFFSET`] from the pole, averaged.
-    fn second_derivatives(&self) -> [Vec<Vec<f64>>; 3] {
+    pub(crate) fn second_derivatives(&self) -> [Vec<Vec<f64>>; 3] {
+        self.second_derivatives_at(OFFSET)
+    }
+
+    /// [`ChartLagrangian::second_derivatives`] about four points at `offset` from the pole.
+    pub(crate) fn second_derivatives_at(&self, offset: f64) -> [Vec<Vec<f64>>; 3] {
         let n = self.rest.len();
         let mut sums = [
             vec![vec![0.0; n]; n],
             vec![vec![0.0; n]; n],
             vec![vec![0.0; n]; n],
         ];
-        let bases = [[OFFSET, 0.0], [-OFFSET, 0.0], [0.0, OFFSET], [0.0, -OFFSET]];
+        let bases = [[offset, 0.0], [-offset, 0.0], [0.0, offset], [0.0, -offset]];
         // `L` is quadratic in the rates, so any step is exact there; positions take a step
         // that keeps every point at least half the offset from the pole.
-        let (dr, h) = (1.0, OFFSET / 4.0);
+        let (dr, h) = (1.0, offset / 4.0);
         for base in bases {
             let mut s0 = vec![0.0; n];
             s0[..2].copy_from_slice(&base);

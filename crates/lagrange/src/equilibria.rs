@@ -12,6 +12,7 @@ use serde_json::Value;
 
 use crate::assign::{AssignmentError, Range};
 use crate::chart::AtPole;
+use crate::chart_modes::ChartModes;
 use crate::{Analysis, Error};
 
 /// The search range of a coordinate that is not an angle, unless one is given.
@@ -42,6 +43,9 @@ pub struct Equilibria {
     /// At an equilibrium on a pole of the coordinates, where the linearization cannot
     /// decide, the stability decided in a regular chart (`None` elsewhere; crate::chart).
     pub at_poles: Vec<Option<AtPole>>,
+    /// At a rest state on a pole of the coordinates, the linearization in the regular chart
+    /// (`None` elsewhere; crate::chart_modes).
+    pub pole_modes: Vec<Option<ChartModes>>,
 }
 
 /// One step of a parameter sweep: the value, the equilibria there, the linearization about
@@ -125,14 +129,20 @@ impl Equilibria {
     #[must_use]
     pub fn linearized_text(&self, only: Option<usize>, deviations: Deviations<'_>) -> String {
         let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
-        print::linearized_text_with_response(r, set, lin, inputs, only, deviations)
+        let text = print::linearized_text_with_response(r, set, lin, inputs, only, deviations);
+        crate::chart_modes::with_chart_modes(&text, &self.pole_modes)
     }
 
     /// [`Equilibria::linearized_text`] as JSON (docs/json.md).
     #[must_use]
     pub fn linearized_json(&self, only: Option<usize>, deviations: Deviations<'_>) -> Value {
         let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
-        print::linearized_json_with_response(r, set, lin, inputs, only, deviations)
+        let mut json = print::linearized_json_with_response(r, set, lin, inputs, only, deviations);
+        if let Some(object) = json.as_object_mut() {
+            let modes = crate::chart_modes::chart_modes_json(&self.pole_modes, only);
+            object.insert("at_poles".to_owned(), modes);
+        }
+        json
     }
 }
 
@@ -202,12 +212,14 @@ impl Analysis {
             let prepared = self.prepare_equilibria(search)?;
             let (set, linearized) = prepared.at(&prepared.values)?;
             let at_poles = poles(&prepared, search, &set, &linearized);
+            let pole_modes = chart_modes(&prepared, search, &set, &at_poles);
             Ok(Equilibria {
                 rest: prepared.rest,
                 set,
                 linearized,
                 inputs: prepared.inputs,
                 at_poles,
+                pole_modes,
             })
         })
     }
@@ -333,6 +345,25 @@ fn poles(
     let zip = set.equilibria.iter().zip(linearized);
     zip.map(|(e, l)| l.as_ref().err().and_then(|_| at(e)))
         .collect()
+}
+
+/// The chart linearization at each rest state whose stability a pole's chart decided.
+fn chart_modes(
+    prepared: &Prepared,
+    search: &Search,
+    set: &EquilibriumSet,
+    at_poles: &[Option<AtPole>],
+) -> Vec<Option<ChartModes>> {
+    let (_, equations) = &prepared.geometry;
+    let values = &prepared.values;
+    let zip = set.equilibria.iter().zip(at_poles);
+    zip.map(|(e, pole)| {
+        let at_rest = search.steady.is_empty() && matches!(pole, Some(AtPole::Rest(_)));
+        at_rest
+            .then(|| crate::chart_modes::pole_modes(equations, &e.values, values))
+            .flatten()
+    })
+    .collect()
 }
 
 fn unknown(name: &str, known: &[String]) -> Error {

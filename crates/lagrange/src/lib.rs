@@ -63,6 +63,7 @@
 mod analysis;
 pub mod assign;
 mod chart;
+mod chart_modes;
 pub mod csv;
 mod equilibria;
 mod error;
@@ -85,6 +86,7 @@ mod written;
 pub use analysis::{Analysis, Source};
 pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Range};
 pub use chart::{AtPole, PoleSpin, PoleStability};
+pub use chart_modes::ChartModes;
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};

@@ -147,8 +147,8 @@ impl std::fmt::Display for Misuse {
 pub struct QuestionError {
     /// The part at fault, if one is.
     pub part: Option<QuestionPart>,
-    /// What went wrong.
-    pub error: Error,
+    /// What went wrong (boxed: an answer's result stays small).
+    pub error: Box<Error>,
 }
 
 impl From<Error> for QuestionError {
@@ -157,7 +157,10 @@ impl From<Error> for QuestionError {
             Error::Misuse(misuse) => Some(misuse.part()),
             _ => None,
         };
-        QuestionError { part, error }
+        QuestionError {
+            part,
+            error: Box::new(error),
+        }
     }
 }
 
@@ -165,7 +168,7 @@ impl From<Error> for QuestionError {
 fn at<T>(part: QuestionPart, result: Result<T, impl Into<Error>>) -> Result<T, QuestionError> {
     result.map_err(|e| QuestionError {
         part: Some(part),
-        error: e.into(),
+        error: Box::new(e.into()),
     })
 }
 

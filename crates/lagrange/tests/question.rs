@@ -82,7 +82,7 @@ fn parts_that_do_not_go_together_are_refused_by_part() {
     };
     let error = analysis.answer(&question).unwrap_err();
     assert_eq!(error.part, Some(QuestionPart::Range));
-    let Error::Misuse(misuse) = &error.error else {
+    let Error::Misuse(misuse) = &*error.error else {
         panic!("a misuse, not {:?}", error.error)
     };
     assert_eq!(
@@ -119,7 +119,7 @@ fn a_plot_without_a_sweep_and_a_third_sweep_are_refused() {
     };
     let error = analysis.answer(&question).unwrap_err();
     assert!(matches!(
-        error.error,
+        *error.error,
         Error::Misuse(Misuse::TooManySweeps { most: 1 })
     ));
 }
@@ -134,7 +134,7 @@ fn a_value_that_does_not_read_is_refused_at_its_part() {
     };
     let error = analysis.answer(&question).unwrap_err();
     assert_eq!(error.part, Some(QuestionPart::Steady));
-    assert!(matches!(error.error, Error::Assignment(_)), "{error:?}");
+    assert!(matches!(*error.error, Error::Assignment(_)), "{error:?}");
     let index = EquilibriumQuestion {
         only: Some(7),
         linearize: Some(&[]),
@@ -142,7 +142,10 @@ fn a_value_that_does_not_read_is_refused_at_its_part() {
     };
     let error = analysis.answer(&index).unwrap_err();
     assert_eq!(error.part, Some(QuestionPart::Only));
-    assert!(matches!(error.error, Error::NoSuchEquilibrium { index: 7, .. }));
+    assert!(matches!(
+        *error.error,
+        Error::NoSuchEquilibrium { index: 7, .. }
+    ));
 }
 
 #[test]
@@ -161,7 +164,7 @@ fn a_floquet_analysis_is_answered_and_a_missing_motion_refused() {
     };
     let error = analysis.answer(&question).unwrap_err();
     assert!(matches!(
-        error.error,
+        *error.error,
         Error::Misuse(Misuse::NoSuchMotion { index: 99, .. })
     ));
 }

@@ -51,7 +51,7 @@ fn flag(part: QuestionPart) -> &'static str {
 
 /// The library's error with its flag named.
 fn failure(error: QuestionError, path: &std::path::Path) -> Failure {
-    match (error.part, error.error) {
+    match (error.part, *error.error) {
         (_, Error::Misuse(misuse)) => {
             Failure::input(misuse.sentence(|part| flag(part).to_string()))
         }
