@@ -651,6 +651,9 @@ impl ChartLagrangian {
         }
         let sign = if companion < 0.0 { "+" } else { "−" };
         let alpha = &names[self.original[1]];
+        if (companion.abs() - 1.0).abs() < 1e-12 {
+            return format!("{} {sign} {alpha}", names[k]);
+        }
         format!("{} {sign} {} {alpha}", names[k], number(companion.abs()))
     }
 

@@ -84,6 +84,7 @@ impl Analysis {
                         &notation,
                         state.as_ref(),
                     ));
+                pole_paragraphs(e, &notation, &mut document.sections);
             }
             Err(why) => {
                 let mut section = Section::new("Equilibria and their stability", 2);
@@ -383,4 +384,52 @@ fn initial_by_name(
         rates.push(*state.get(n + k)?);
     }
     Some(report::solution_equilibria::InitialState { positions, rates })
+}
+
+/// Beneath the equilibria and the linearized dynamics, what the regular chart at a pole of the
+/// coordinates decided and gave (`crate::chart`, `crate::chart_modes`): the model's
+/// coordinates cannot decide there, and the table says so.
+fn pole_paragraphs(found: &crate::Equilibria, notation: &Notation, sections: &mut [Section]) {
+    let name = |q: &str| notation.math(cas::Expr::coordinate(q)).unicode;
+    for section in sections.iter_mut() {
+        let stability = section.title == "Equilibria and their stability";
+        let linearized = section.title == "Linearized dynamics";
+        for (i, (pole, modes)) in found.at_poles.iter().zip(&found.pole_modes).enumerate() {
+            if let (true, Some(crate::AtPole::Rest(p))) = (stability, pole) {
+                let (polar, azimuth) = (name(&p.polar), name(&p.azimuth));
+                let eigenvalues: Vec<String> =
+                    p.eigenvalues.iter().map(|e| format!("{e:.4}")).collect();
+                let verdict = match p.stable {
+                    Some(true) => "stable (Lagrange–Dirichlet: a strict minimum of the potential)",
+                    Some(false) => "unstable (a negative eigenvalue)",
+                    None => "not decided (the Hessian is only semidefinite)",
+                };
+                section.paragraph(format!(
+                    "Equilibrium {i} lies at the pole of {polar}, where {azimuth} moves nothing \
+                     and M0 is singular. In the regular chart u = ({polar} − {polar}₀) cos \
+                     {azimuth}, v = ({polar} − {polar}₀) sin {azimuth} the potential's Hessian \
+                     has the eigenvalues {}: {verdict}.",
+                    eigenvalues.join(", ")
+                ));
+            }
+            if let (true, Some(m)) = (linearized, modes) {
+                let frequencies: Vec<String> = m
+                    .frequencies()
+                    .iter()
+                    .zip(&m.omega_squared)
+                    .map(|(w, w2)| match w {
+                        Some(w) => format!("ω = {w:.4} rad/s"),
+                        None => format!("none (ω² = {w2:.4})"),
+                    })
+                    .collect();
+                section.paragraph(format!(
+                    "Equilibrium {i}, at the pole of {}: linearized in the regular chart ({}), \
+                     natural frequencies {}.",
+                    name(&m.polar),
+                    m.chart.join(", "),
+                    frequencies.join(", ")
+                ));
+            }
+        }
+    }
 }
