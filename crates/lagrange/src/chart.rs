@@ -293,22 +293,10 @@ pub(crate) fn at_pole(
 /// `text` (the equilibria as `lagrange equilibria` prints them) with each pole's sentence
 /// beneath its equilibrium's "stability not decided" line.
 pub(crate) fn with_pole_sentences(text: &str, poles: &[Option<AtPole>]) -> String {
-    let mut out = String::with_capacity(text.len());
-    let mut current: Option<usize> = None;
-    for line in text.lines() {
-        if let Some(rest) = line.strip_prefix('#') {
-            current = rest.split(':').next().and_then(|k| k.parse().ok());
-        }
-        out.push_str(line);
-        out.push('\n');
-        let pole = current.and_then(|k| poles.get(k)).and_then(Option::as_ref);
-        if let (Some(pole), true) = (pole, line.contains("stability not decided")) {
-            out.push_str("    ");
-            out.push_str(&pole.sentence());
-            out.push('\n');
-        }
-    }
-    out
+    let marker = |line: &str| line.contains("stability not decided");
+    crate::chart_modes::beneath(text, poles, marker, |pole| {
+        format!("    {}\n", pole.sentence())
+    })
 }
 
 /// The decisions at poles as JSON (docs/json.md): one entry per equilibrium, `null` where

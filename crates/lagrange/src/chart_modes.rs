@@ -138,6 +138,18 @@ fn chart_text(modes: &ChartModes) -> String {
 /// `text` (the linearizations as `lagrange linearize` prints them) with each pole's chart
 /// linearization beneath its equilibrium's "not linearized" line.
 pub(crate) fn with_chart_modes(text: &str, modes: &[Option<ChartModes>]) -> String {
+    let marker = |line: &str| line.starts_with("  not linearized");
+    beneath(text, modes, marker, chart_text)
+}
+
+/// `text`, a listing of equilibria (`#k: …` opens the k-th), with `render(item k)` inserted
+/// after the k-th equilibrium's lines that `marker` picks.
+pub(crate) fn beneath<T>(
+    text: &str,
+    items: &[Option<T>],
+    marker: impl Fn(&str) -> bool,
+    render: impl Fn(&T) -> String,
+) -> String {
     let mut out = String::with_capacity(text.len());
     let mut current: Option<usize> = None;
     for line in text.lines() {
@@ -146,9 +158,9 @@ pub(crate) fn with_chart_modes(text: &str, modes: &[Option<ChartModes>]) -> Stri
         }
         out.push_str(line);
         out.push('\n');
-        let found = current.and_then(|k| modes.get(k)).and_then(Option::as_ref);
-        if let (Some(found), true) = (found, line.starts_with("  not linearized")) {
-            out.push_str(&chart_text(found));
+        let item = current.and_then(|k| items.get(k)).and_then(Option::as_ref);
+        if let (Some(item), true) = (item, marker(line)) {
+            out.push_str(&render(item));
         }
     }
     out
