@@ -13,7 +13,8 @@
 // checked against them; f64 rounds them on reading.
 #![allow(clippy::excessive_precision)]
 
-use super::{initial_step, Driver, Failure, Observer, Stiffness, StopReason};
+use super::explicit::{self, Pair};
+use super::{Driver, Failure, Observer, StopReason};
 
 /// Hairer's stiffness threshold for DOP853: `h·|λ|` above it (near the boundary of its
 /// stability region on the negative real axis, about 6.1) is a step limited by stability.
@@ -272,10 +273,16 @@ const D: [[(usize, f64); 12]; 4] = [
 type Stages = [Vec<f64>; 16];
 
 pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
-    match steps(driver, observer) {
-        Ok(stop) => stop,
-        Err(failure) => StopReason::Failed(failure),
-    }
+    let n = driver.y.len();
+    let mut pair = Dop853 {
+        k: std::array::from_fn(|_| vec![0.0; n]),
+        work: Work {
+            stage: vec![0.0; n],
+            y1: vec![0.0; n],
+            dense: std::array::from_fn(|_| vec![0.0; n]),
+        },
+    };
+    explicit::run(&mut pair, driver, observer)
 }
 
 /// Work vectors of a step besides the stages.
@@ -288,99 +295,62 @@ struct Work {
     dense: [Vec<f64>; 8],
 }
 
-fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
-    let n = driver.y.len();
-    let mut k: Stages = std::array::from_fn(|_| vec![0.0; n]);
-    let mut work = Work {
-        stage: vec![0.0; n],
-        y1: vec![0.0; n],
-        dense: std::array::from_fn(|_| vec![0.0; n]),
-    };
-    let direction = driver.direction;
-    let y0 = driver.y.clone();
-    driver.rhs(driver.t, &y0, &mut k[0])?;
-    let mut h = match driver.options.step {
-        Some(h) if h.is_finite() && h > 0.0 => h,
-        _ => initial_step(driver, &k[0], 8)?,
-    };
-    let mut previous_error: f64 = 1e-4;
-    let mut rejected_last = false;
-    let mut stiffness = Stiffness::new(STIFF_H_LAMBDA);
-    loop {
-        let t = driver.t;
-        let span = (driver.t_end - t).abs();
-        if h >= span {
-            h = span;
-        }
-        if let Some(failure) = driver.too_small(t, h) {
-            return Err(failure);
-        }
-        let (min_step, _) = driver.step_floor(t);
-        let hs = h * direction;
-        let err = match stages(driver, &mut k, &mut work, t, hs) {
-            // A failed evaluation inside the step is a rejection with a much smaller step,
-            // reported only at the step floor (as in dopri5).
-            Some(e) => {
-                if h <= 1e3 * min_step || 0.1 * h < min_step {
-                    return Err(match e {
-                        Failure::Rhs { error, .. } => Failure::Rhs { t, error },
-                        other => other,
-                    });
-                }
-                f64::INFINITY
-            }
-            None => error_norm(driver, &k, &work.y1, h),
-        };
-        if err > 1.0 {
-            driver.stats.rejected += 1;
-            rejected_last = true;
-            h *= rejection_factor(err);
-            continue;
-        }
-        let factor = accepted_factor(err, previous_error, rejected_last);
-        previous_error = err.max(1e-4);
-        rejected_last = false;
-        let t1 = if h == span { driver.t_end } else { t + hs };
-        if let Err(e) = driver.rhs(t1, &work.y1, &mut k[12]) {
-            // The new point itself cannot be evaluated: retry with a tenth of the step.
-            if 0.1 * h < min_step {
-                return Err(e);
-            }
-            driver.stats.rejected += 1;
-            rejected_last = true;
-            h *= 0.1;
-            continue;
-        }
-        // Stage 12 (`work.stage`, derivative k₁₂) and the new point (y₁, its derivative
-        // k₁₃) are both at t + h: their difference quotient estimates |λ| of the Jacobian.
-        if let Some(steps) = stiffness.observe(h, &k[12], &k[11], &work.y1, &work.stage) {
-            let remaining = (driver.t_end - t).abs() / h;
-            if remaining > super::STIFF_PROJECTED_STEPS {
-                return Err(Failure::Stiff {
-                    t,
-                    h,
-                    h_lambda: stiffness.last,
-                    steps,
-                    remaining,
-                });
-            }
-        }
-        if driver.interpolation_needed(t1, &work.y1) {
-            dense_output(driver, &mut k, &mut work, t, hs)?;
-        }
-        let dense = &work.dense;
-        let interpolate = |at: f64, out: &mut [f64]| evaluate_dense(dense, (at - t) / hs, out);
-        if let Some(stop) = driver.accept(t1, &work.y1, &interpolate, observer) {
-            return Ok(stop);
-        }
-        if driver.project()? {
-            let y = driver.y.clone();
-            driver.rhs(driver.t, &y, &mut k[0])?;
-        } else {
-            let (first, rest) = k.split_at_mut(1);
-            first[0].copy_from_slice(&rest[11]);
-        }
-        h *= factor;
+/// The stages and work vectors of the method.
+struct Dop853 {
+    k: Stages,
+    work: Work,
+}
+
+impl Pair for Dop853 {
+    const ORDER: i32 = 8;
+    const DENSE_COSTS_EVALUATIONS: bool = true;
+    const STIFF_THRESHOLD: f64 = STIFF_H_LAMBDA;
+
+    fn first_stage(&mut self) -> &mut [f64] {
+        &mut self.k[0]
+    }
+
+    fn stages(&mut self, driver: &mut Driver<'_>, t: f64, hs: f64) -> Option<Failure> {
+        stages(driver, &mut self.k, &mut self.work, t, hs)
+    }
+
+    fn error(&mut self, driver: &Driver<'_>, h: f64, _hs: f64) -> f64 {
+        error_norm(driver, &self.k, &self.work.y1, h)
+    }
+
+    /// The FSAL stage `k[12]`, at the new point.
+    fn new_point_rate(&mut self, driver: &mut Driver<'_>, t1: f64) -> Result<(), Failure> {
+        driver.rhs(t1, &self.work.y1, &mut self.k[12])
+    }
+
+    /// Stage 12 (`work.stage`, derivative k₁₂) and the new point (y₁, its derivative k₁₃).
+    fn stiffness_pair(&self) -> [&[f64]; 4] {
+        [&self.k[12], &self.k[11], &self.work.y1, &self.work.stage]
+    }
+
+    fn dense(&mut self, driver: &mut Driver<'_>, t: f64, hs: f64) -> Result<(), Failure> {
+        dense_output(driver, &mut self.k, &mut self.work, t, hs)
+    }
+
+    fn interpolate(&self, theta: f64, out: &mut [f64]) {
+        evaluate_dense(&self.work.dense, theta, out);
+    }
+
+    fn new_point(&self) -> &[f64] {
+        &self.work.y1
+    }
+
+    fn reuse_new_point_rate(&mut self) {
+        let (first, rest) = self.k.split_at_mut(1);
+        first[0].copy_from_slice(&rest[11]);
+    }
+
+    fn accepted_factor(err: f64, previous_error: f64, rejected_last: bool) -> f64 {
+        accepted_factor(err, previous_error, rejected_last)
+    }
+
+    fn rejection_factor(err: f64) -> f64 {
+        rejection_factor(err)
     }
 }
 

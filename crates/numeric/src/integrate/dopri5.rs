@@ -2,9 +2,8 @@
 //! controller, and Hairer's fourth-order continuous extension (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, §II.5 and the code DOPRI5).
 
-use super::{
-    Driver, Failure, Observer, StopReason, STIFF_H_LAMBDA, STIFF_PROJECTED_STEPS, STIFF_STEPS,
-};
+use super::explicit::{self, Pair};
+use super::{Driver, Failure, Observer, StopReason, STIFF_STEPS};
 
 const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 const A21: f64 = 0.2;
@@ -41,143 +40,114 @@ const D6: f64 = -1_453_857_185.0 / 822_651_844.0;
 const D7: f64 = 69_997_945.0 / 29_380_423.0;
 
 pub(super) fn run(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> StopReason {
-    match steps(driver, observer) {
-        Ok(stop) => stop,
-        Err(failure) => StopReason::Failed(failure),
-    }
-}
-
-fn steps(driver: &mut Driver<'_>, observer: &mut Observer<'_>) -> Result<StopReason, Failure> {
     let n = driver.y.len();
-    let mut k: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; n]);
-    let mut stage = vec![0.0; n];
-    let mut y1 = vec![0.0; n];
-    let mut error = vec![0.0; n];
-    let mut dense: [Vec<f64>; 5] = std::array::from_fn(|_| vec![0.0; n]);
-    let direction = driver.direction;
-    let y0 = driver.y.clone();
-    driver.rhs(driver.t, &y0, &mut k[0])?;
-    let mut h = match driver.options.step {
-        Some(h) if h.is_finite() && h > 0.0 => h,
-        _ => initial_step(driver, &k[0], 5)?,
+    let mut pair = Dopri5 {
+        k: std::array::from_fn(|_| vec![0.0; n]),
+        stage: vec![0.0; n],
+        y1: vec![0.0; n],
+        error: vec![0.0; n],
+        dense: std::array::from_fn(|_| vec![0.0; n]),
     };
-    let mut previous_error: f64 = 1e-4;
-    let mut rejected_last = false;
-    let mut stiffness = Stiffness::new(STIFF_H_LAMBDA);
-    loop {
-        let t = driver.t;
-        let span = (driver.t_end - t).abs();
-        if h >= span {
-            h = span;
-        }
-        if let Some(failure) = driver.too_small(t, h) {
-            return Err(failure);
-        }
-        let (min_step, _) = driver.step_floor(t);
-        let hs = h * direction;
-        let failed = stages(driver, &mut k, &mut stage, &mut y1, t, hs);
-        let err = match failed {
-            // A failed evaluation inside the step (NaN, a singular matrix met on the way) is
-            // treated as a rejection with a much smaller step; only at the step floor is it
-            // reported, with the time of the step (the next try, a tenth of this one,
-            // would be below the floor).
-            Some(e) => {
-                if h <= 1e3 * min_step || 0.1 * h < min_step {
-                    return Err(match e {
-                        Failure::Rhs { error, .. } => Failure::Rhs { t, error },
-                        other => other,
-                    });
-                }
-                f64::INFINITY
-            }
-            None => {
-                for (i, e) in error.iter_mut().enumerate() {
-                    *e = hs * weighted(&k, [E1, 0.0, E3, E4, E5, E6, E7], i);
-                }
-                driver.error_norm(&driver.y, &y1, &error)
-            }
-        };
-        if err <= 1.0 {
-            let factor = pi_factor(err, previous_error, rejected_last);
-            previous_error = err.max(1e-4);
-            rejected_last = false;
-            // Stage 6 (`stage`, derivative k₆) and the new point (y₁, k₇) are both at
-            // t + h: their difference quotient estimates |λ| of the Jacobian.
-            if let Some(steps) = stiffness.observe(h, &k[6], &k[5], &y1, &stage) {
-                let remaining = (driver.t_end - t).abs() / h;
-                if remaining > STIFF_PROJECTED_STEPS {
-                    return Err(Failure::Stiff {
-                        t,
-                        h,
-                        h_lambda: stiffness.last,
-                        steps,
-                        remaining,
-                    });
-                }
-            }
-            dense_coefficients(&mut dense, &driver.y, &y1, &k, hs);
-            let t1 = if h == span { driver.t_end } else { t + hs };
-            let interpolate = |at: f64, out: &mut [f64]| {
-                let theta = (at - t) / hs;
-                let theta1 = 1.0 - theta;
-                for i in 0..out.len() {
-                    out[i] = dense[0][i]
-                        + theta
-                            * (dense[1][i]
-                                + theta1
-                                    * (dense[2][i] + theta * (dense[3][i] + theta1 * dense[4][i])));
-                }
-            };
-            if let Some(stop) = driver.accept(t1, &y1, &interpolate, observer) {
-                return Ok(stop);
-            }
-            if driver.project()? {
-                let y = driver.y.clone();
-                driver.rhs(driver.t, &y, &mut k[0])?;
-            } else {
-                let (first, rest) = k.split_at_mut(1);
-                first[0].copy_from_slice(&rest[5]);
-            }
-            h *= factor;
-        } else {
-            driver.stats.rejected += 1;
-            rejected_last = true;
-            h *= rejection_factor(err);
-        }
-    }
+    explicit::run(&mut pair, driver, observer)
 }
 
-/// Stages 2…7 of a step of size `hs` from `(t, driver.y)`; stage 7 is evaluated at the new
-/// point `y1` and reused as stage 1 of the next step (FSAL). A failed evaluation is returned.
-fn stages(
-    driver: &mut Driver<'_>,
-    k: &mut [Vec<f64>; 7],
-    stage: &mut [f64],
-    y1: &mut [f64],
-    t: f64,
-    hs: f64,
-) -> Option<Failure> {
-    let rows: [&[(usize, f64)]; 6] = [
-        &[(0, A21)],
-        &[(0, A31), (1, A32)],
-        &[(0, A41), (1, A42), (2, A43)],
-        &[(0, A51), (1, A52), (2, A53), (3, A54)],
-        &[(0, A61), (1, A62), (2, A63), (3, A64), (4, A65)],
-        &[(0, A71), (2, A73), (3, A74), (4, A75), (5, A76)],
-    ];
-    for (s, row) in rows.iter().enumerate() {
-        let out: &mut [f64] = if s == 5 { &mut *y1 } else { &mut *stage };
-        for i in 0..out.len() {
-            let acc: f64 = row.iter().map(|&(j, a)| a * k[j][i]).sum();
-            out[i] = driver.y[i] + hs * acc;
+/// The work vectors of a step: the seven stages' derivatives (`k[6]` at the new point, FSAL),
+/// the state of the stage being evaluated (after a step, stage 6's), the new point, the error
+/// estimate and the dense output's coefficients.
+struct Dopri5 {
+    k: [Vec<f64>; 7],
+    stage: Vec<f64>,
+    y1: Vec<f64>,
+    error: Vec<f64>,
+    dense: [Vec<f64>; 5],
+}
+
+impl Pair for Dopri5 {
+    const ORDER: i32 = 5;
+    const DENSE_COSTS_EVALUATIONS: bool = false;
+
+    fn first_stage(&mut self) -> &mut [f64] {
+        &mut self.k[0]
+    }
+
+    /// Stages 2…7; stage 7 is evaluated at the new point `y1` and reused as stage 1 of the
+    /// next step (FSAL).
+    fn stages(&mut self, driver: &mut Driver<'_>, t: f64, hs: f64) -> Option<Failure> {
+        let rows: [&[(usize, f64)]; 6] = [
+            &[(0, A21)],
+            &[(0, A31), (1, A32)],
+            &[(0, A41), (1, A42), (2, A43)],
+            &[(0, A51), (1, A52), (2, A53), (3, A54)],
+            &[(0, A61), (1, A62), (2, A63), (3, A64), (4, A65)],
+            &[(0, A71), (2, A73), (3, A74), (4, A75), (5, A76)],
+        ];
+        for (s, row) in rows.iter().enumerate() {
+            let out: &mut [f64] = if s == 5 {
+                &mut self.y1
+            } else {
+                &mut self.stage
+            };
+            let k = &self.k;
+            for (i, value) in out.iter_mut().enumerate() {
+                let acc: f64 = row.iter().map(|&(j, a)| a * k[j][i]).sum();
+                *value = driver.y[i] + hs * acc;
+            }
+            let ts = t + C[s + 1] * hs;
+            let input: &[f64] = if s == 5 { &self.y1 } else { &self.stage };
+            if let Err(e) = driver.rhs(ts, input, &mut self.k[s + 1]) {
+                return Some(e);
+            }
         }
-        let ts = t + C[s + 1] * hs;
-        let input: &[f64] = if s == 5 { y1 } else { stage };
-        if let Err(e) = driver.rhs(ts, input, &mut k[s + 1]) {
-            return Some(e);
+        None
+    }
+
+    fn error(&mut self, driver: &Driver<'_>, _h: f64, hs: f64) -> f64 {
+        for (i, e) in self.error.iter_mut().enumerate() {
+            *e = hs * weighted(&self.k, [E1, 0.0, E3, E4, E5, E6, E7], i);
+        }
+        driver.error_norm(&driver.y, &self.y1, &self.error)
+    }
+
+    fn new_point_rate(&mut self, _driver: &mut Driver<'_>, _t1: f64) -> Result<(), Failure> {
+        Ok(())
+    }
+
+    fn stiffness_pair(&self) -> [&[f64]; 4] {
+        [&self.k[6], &self.k[5], &self.y1, &self.stage]
+    }
+
+    fn dense(&mut self, driver: &mut Driver<'_>, _t: f64, hs: f64) -> Result<(), Failure> {
+        dense_coefficients(&mut self.dense, &driver.y, &self.y1, &self.k, hs);
+        Ok(())
+    }
+
+    fn interpolate(&self, theta: f64, out: &mut [f64]) {
+        let dense = &self.dense;
+        let theta1 = 1.0 - theta;
+        for (i, value) in out.iter_mut().enumerate() {
+            *value = dense[0][i]
+                + theta
+                    * (dense[1][i]
+                        + theta1 * (dense[2][i] + theta * (dense[3][i] + theta1 * dense[4][i])));
         }
     }
-    None
+
+    fn new_point(&self) -> &[f64] {
+        &self.y1
+    }
+
+    fn reuse_new_point_rate(&mut self) {
+        let (first, rest) = self.k.split_at_mut(1);
+        first[0].copy_from_slice(&rest[5]);
+    }
+
+    fn accepted_factor(err: f64, previous_error: f64, rejected_last: bool) -> f64 {
+        pi_factor(err, previous_error, rejected_last)
+    }
+
+    fn rejection_factor(err: f64) -> f64 {
+        rejection_factor(err)
+    }
 }
 
 /// The step-size factor after a rejected step (a tenth after a failed evaluation).

@@ -19,6 +19,7 @@
 
 mod dop853;
 mod dopri5;
+mod explicit;
 mod gauss;
 pub use gauss::PILOT_STEPS;
 mod sdirk;
