@@ -1,23 +1,10 @@
 //! `lagrange equilibria` and `lagrange linearize` on the command line: JSON keys, sweeps,
 //! errors, one equilibrium by index, every example answered.
 
-use std::process::Command;
-
 use lagrange::cas::{self, Symbol};
 
-fn run(args: &[&str]) -> (bool, String, String) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .current_dir(root)
-        .output()
-        .expect("runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::run;
 
 #[test]
 fn equilibria_json_has_the_documented_keys() {

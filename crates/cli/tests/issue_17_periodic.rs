@@ -3,21 +3,8 @@
 //! multipliers and verdicts are printed (text and JSON), `--sweep` writes the stability chart
 //! as CSV and `--plot` draws it, and what cannot be done is refused with the flag's name.
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> (bool, String, String) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .current_dir(root)
-        .output()
-        .expect("runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::run;
 
 #[test]
 fn kapitza_upright_is_stable_and_slow_driving_makes_it_unstable() {

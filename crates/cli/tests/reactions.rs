@@ -1,20 +1,7 @@
 //! `lagrange reactions`: text and JSON on the examples, and errors.
 
-use std::process::Command;
-
-fn run(args: &[&str]) -> (Option<i32>, String, String) {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let out = Command::new(env!("CARGO_BIN_EXE_lagrange"))
-        .args(args)
-        .current_dir(root)
-        .output()
-        .expect("runs");
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::run_code as run;
 
 #[test]
 fn the_sphere_is_left_at_two_thirds() {

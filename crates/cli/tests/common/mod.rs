@@ -50,3 +50,15 @@ pub const SPHERE_RUN: [&str; 8] = [
 pub fn lagrange_with(first: &[&str], rest: &[&str]) -> Output {
     lagrange(&[first, rest].concat())
 }
+
+/// Runs `lagrange ARGS`: its exit code, standard output and standard error.
+pub fn run_code(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = lagrange(args);
+    (out.status.code(), stdout(&out), stderr(&out))
+}
+
+/// Runs `lagrange ARGS`: whether it succeeded, its standard output and standard error.
+pub fn run(args: &[&str]) -> (bool, String, String) {
+    let out = lagrange(args);
+    (out.status.success(), stdout(&out), stderr(&out))
+}
