@@ -91,7 +91,7 @@ pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
-pub use output::{FileFormat, Output};
+pub use output::{FileFormat, Output, SolutionOutput};
 pub use projection::ProjectedReaction;
 pub use question::{Answer, EquilibriumQuestion, Misuse, QuestionError, QuestionPart};
 pub use reactions::{NumericMultipliers, Reactions};

@@ -188,3 +188,47 @@ impl Analysis {
         Ok(())
     }
 }
+
+/// A solution rendered for where it goes ([`Analysis::solution_into`]).
+#[derive(Debug, Clone)]
+pub struct SolutionOutput {
+    /// The report in the format asked for.
+    pub text: String,
+    /// The report's file in the directory asked for (`None`: no directory, the caller prints
+    /// it).
+    pub file: Option<PathBuf>,
+    /// Whether Lagrange I and Newton–Euler disagree on a reaction (a bug of lagrange).
+    pub disagree: bool,
+}
+
+impl Analysis {
+    /// The whole solution of the model read from `model`, rendered as `format`; with a
+    /// directory `out`, its files prepared there first (each existing one that will be
+    /// replaced is given to `replacing` before any work) and the figures and plots written
+    /// into it. The report itself is left for the caller to write (`file`).
+    ///
+    /// # Errors
+    /// As [`Figures::prepare`] and [`Analysis::solution`].
+    pub fn solution_into(
+        &self,
+        model: &Path,
+        format: crate::ReportFormat,
+        out: Option<&Path>,
+        replacing: &mut dyn FnMut(&Path),
+    ) -> Result<SolutionOutput, Error> {
+        let figures = match out {
+            Some(dir) => {
+                let (figures, replaced) = Figures::prepare(dir, model, format.extension())?;
+                replaced.iter().for_each(|file| replacing(file));
+                Some(figures)
+            }
+            None => None,
+        };
+        let solution = self.solution(figures.as_ref())?;
+        Ok(SolutionOutput {
+            text: self.solution_written(&solution, format)?,
+            file: figures.map(|f| f.report_file(format.extension())),
+            disagree: solution.disagree,
+        })
+    }
+}

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use crate::exit::{emit, Exit, Failure};
-use lagrange::{Figures, ReportFormat};
+use lagrange::ReportFormat;
 
 /// `lagrange solve MODEL [--format …] [--out DIR]`.
 pub fn run(
@@ -14,26 +14,13 @@ pub fn run(
     set: &[String],
 ) -> Result<Exit, Failure> {
     let analysis = super::load(path, set)?;
-    // Before the sections: the simulation writes its plots into the directory.
-    let figures = out
-        .map(|dir| Figures::prepare(dir, path, format.extension()))
-        .transpose()
-        .map_err(|e| Failure::of(e, path))?
-        .map(|(figures, replaced)| {
-            for file in replaced {
-                eprintln!("replacing {}", file.display());
-            }
-            figures
-        });
-    let solution = analysis
-        .solution(figures.as_ref())
+    let replacing = &mut |file: &Path| eprintln!("replacing {}", file.display());
+    let solved = analysis
+        .solution_into(path, format, out, replacing)
         .map_err(|e| Failure::of(e, path))?;
-    let text = analysis.solution_written(&solution, format);
-    let text = text.map_err(|e| Failure::of(e, path))?;
-    let file = figures.map(|f| f.report_file(format.extension()));
-    emit(file.as_deref(), text)?;
+    emit(solved.file.as_deref(), solved.text)?;
     // Two methods that disagree on a reaction are a bug in lagrange, and the exit code says so.
-    Ok(if solution.disagree {
+    Ok(if solved.disagree {
         Exit::Internal
     } else {
         Exit::Success
