@@ -12,6 +12,7 @@ use serde_json::Value;
 
 use crate::assign::{AssignmentError, Range};
 use crate::chart::AtPole;
+use crate::equilibria_conditions::{with_condition_lines, Conditions};
 use crate::{Analysis, Error};
 
 /// The search range of a coordinate that is not an angle, unless one is given.
@@ -42,6 +43,9 @@ pub struct Equilibria {
     /// At an equilibrium on a pole of the coordinates, where the linearization cannot
     /// decide, the stability decided in a regular chart (`None` elsewhere; crate::chart).
     pub at_poles: Vec<Option<AtPole>>,
+    /// At each equilibrium known in closed form, the stability condition in the parameters
+    /// (crate::equilibria_conditions).
+    pub conditions: Conditions,
 }
 
 /// One step of a parameter sweep: the value, the equilibria there, the linearization about
@@ -104,7 +108,8 @@ impl Equilibria {
     #[must_use]
     pub fn to_text(&self) -> String {
         let text = print::equilibria_text(&self.rest, &self.set, &self.linearized);
-        crate::chart::with_pole_sentences(&text, &self.at_poles)
+        let text = crate::chart::with_pole_sentences(&text, &self.at_poles);
+        with_condition_lines(&text, &self.conditions)
     }
 
     /// [`Equilibria::to_text`] as JSON (docs/json.md).
@@ -116,6 +121,7 @@ impl Equilibria {
                 "at_poles".to_owned(),
                 crate::chart::poles_json(&self.at_poles),
             );
+            object.insert("stability_conditions".to_owned(), self.conditions.json());
         }
         json
     }
@@ -125,14 +131,19 @@ impl Equilibria {
     #[must_use]
     pub fn linearized_text(&self, only: Option<usize>, deviations: Deviations<'_>) -> String {
         let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
-        print::linearized_text_with_response(r, set, lin, inputs, only, deviations)
+        let text = print::linearized_text_with_response(r, set, lin, inputs, only, deviations);
+        with_condition_lines(&text, &self.conditions)
     }
 
     /// [`Equilibria::linearized_text`] as JSON (docs/json.md).
     #[must_use]
     pub fn linearized_json(&self, only: Option<usize>, deviations: Deviations<'_>) -> Value {
         let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
-        print::linearized_json_with_response(r, set, lin, inputs, only, deviations)
+        let mut json = print::linearized_json_with_response(r, set, lin, inputs, only, deviations);
+        if let Some(object) = json.as_object_mut() {
+            object.insert("stability_conditions".to_owned(), self.conditions.json());
+        }
+        json
     }
 }
 
@@ -202,12 +213,21 @@ impl Analysis {
             let prepared = self.prepare_equilibria(search)?;
             let (set, linearized) = prepared.at(&prepared.values)?;
             let at_poles = poles(&prepared, search, &set, &linearized);
+            let positive: Vec<String> = self
+                .system()
+                .parameters()
+                .iter()
+                .map(|(n, _)| n.clone())
+                .collect();
+            let (model, rest, values) = (&prepared.model, &prepared.rest, &prepared.values);
+            let conditions = Conditions::of(model, rest, &set, values, &positive);
             Ok(Equilibria {
                 rest: prepared.rest,
                 set,
                 linearized,
                 inputs: prepared.inputs,
                 at_poles,
+                conditions,
             })
         })
     }

@@ -84,6 +84,7 @@ impl Analysis {
                         &notation,
                         state.as_ref(),
                     ));
+                self.condition_paragraphs(&mut document.sections, e);
             }
             Err(why) => {
                 let mut section = Section::new("Equilibria and their stability", 2);
