@@ -220,7 +220,10 @@ impl Analysis {
                 .map(|(n, _)| n.clone())
                 .collect();
             let (model, rest, values) = (&prepared.model, &prepared.rest, &prepared.values);
-            let conditions = Conditions::of(model, rest, &set, values, &positive);
+            let pole = |i: usize, positive: &dyn Fn(cas::Symbol) -> bool| {
+                pole_condition(&prepared, search, (&set, &at_poles), i, positive)
+            };
+            let conditions = Conditions::of((model, rest, &set), values, &positive, &pole);
             Ok(Equilibria {
                 rest: prepared.rest,
                 set,
@@ -353,6 +356,33 @@ fn poles(
     let zip = set.equilibria.iter().zip(linearized);
     zip.map(|(e, l)| l.as_ref().err().and_then(|_| at(e)))
         .collect()
+}
+
+/// The condition in the parameters of the steady motion `i` at a pole, when the chart
+/// decided it and found it isotropic (crate::chart::spin_condition_at_pole).
+fn pole_condition(
+    prepared: &Prepared,
+    search: &Search,
+    (set, at_poles): (&EquilibriumSet, &[Option<AtPole>]),
+    i: usize,
+    positive: &dyn Fn(cas::Symbol) -> bool,
+) -> Option<mechanics::stability_condition::StabilityCondition> {
+    let Some(Some(AtPole::Spin(spin))) = at_poles.get(i) else {
+        return None;
+    };
+    spin.isotropic?;
+    let e = set.equilibria.get(i)?;
+    let exact = e.exact.as_deref()?;
+    let (_, equations) = &prepared.geometry;
+    let coordinates = equations.coordinates();
+    let spinning: Vec<(usize, f64)> = search
+        .steady
+        .iter()
+        .filter_map(|(q, rate)| Some((coordinates.iter().position(|c| c == q)?, *rate)))
+        .collect();
+    let values = &prepared.values;
+    let point = (e.values.as_slice(), exact);
+    crate::chart::spin_condition_at_pole(equations, point, &spinning, values, positive)
 }
 
 fn unknown(name: &str, known: &[String]) -> Error {

@@ -22,13 +22,14 @@ pub struct Conditions {
 }
 
 impl Conditions {
-    /// The conditions at the equilibria of `set` (one symbolic pass for each exact one).
+    /// The conditions at the equilibria of `set` (one symbolic pass for each exact one);
+    /// `at_pole` gives the condition where the model's coordinates fail (crate::chart), by
+    /// index, with the positivity of the parameters.
     pub(crate) fn of(
-        model: &LinearModel,
-        rest: &RestEquations,
-        set: &EquilibriumSet,
+        (model, rest, set): (&LinearModel, &RestEquations, &EquilibriumSet),
         values: &Values,
         positive_names: &[String],
+        at_pole: &dyn Fn(usize, &dyn Fn(Symbol) -> bool) -> Option<StabilityCondition>,
     ) -> Conditions {
         let positive = |s: Symbol| {
             positive_names.iter().any(|n| n == s.name())
@@ -37,9 +38,10 @@ impl Conditions {
         let at: Vec<Option<StabilityCondition>> = set
             .equilibria
             .iter()
-            .map(|e| {
+            .enumerate()
+            .map(|(i, e)| {
                 let exact = e.exact.as_deref()?;
-                stability_condition(model, rest, exact, &positive)
+                stability_condition(model, rest, exact, &positive).or_else(|| at_pole(i, &positive))
             })
             .collect();
         let on_boundary = at

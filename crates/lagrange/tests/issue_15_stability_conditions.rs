@@ -16,7 +16,7 @@
 use std::path::Path;
 
 use lagrange::mechanics::stability_condition::{ConditionCriterion, Verdict};
-use lagrange::Analysis;
+use lagrange::{Analysis, Search};
 
 fn example(name: &str) -> Analysis {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -107,4 +107,39 @@ fn the_solution_report_states_the_condition_in_its_stability_section() {
     assert!(markdown.contains("a family of equilibria"), "{markdown}");
     let latex = document.to_latex();
     assert!(latex.contains("stable iff $\\Omega^2 < 2 a g$"), "{latex}");
+}
+
+#[test]
+fn the_sleeping_top_meets_maxwells_criterion_in_the_parameters() {
+    // A = 0.002, C = 0.0008, m = 0.5, g = 9.81, ℓ = 0.05: C² ω₃² = 4 A m g ℓ at ω₃ ≈ 55.37.
+    let (a, c, m, g, l) = (0.002_f64, 0.0008_f64, 0.5_f64, 9.81_f64, 0.05_f64);
+    let critical = (4.0 * a * m * g * l).sqrt() / c;
+    let top = example("heavy-symmetric-top.lag");
+    for (rate, stable) in [(0.9 * critical, false), (1.1 * critical, true)] {
+        let search = Search {
+            steady: vec![("phi".to_owned(), rate)],
+            ..Search::default()
+        };
+        let equilibria = top.equilibria_with(&search).unwrap();
+        let upright = equilibria
+            .set
+            .equilibria
+            .iter()
+            .position(|e| e.values[1].abs() < 1e-12)
+            .expect("the upright top");
+        let condition = equilibria.conditions.at[upright].as_ref().expect("Maxwell");
+        assert_eq!(condition.criterion, ConditionCriterion::Gyroscopic);
+        let Verdict::When(all) = &condition.verdict else {
+            panic!("{:?}", condition.verdict)
+        };
+        let texts: Vec<String> = all
+            .iter()
+            .map(|i| i.text(lagrange::cas::print::to_sympy))
+            .collect();
+        assert_eq!(texts, ["C**2*phi_d**2 > 4*A*g*l*m"]);
+        // The chart's numeric decision agrees on either side of the boundary.
+        let pole = equilibria.at_poles[upright].as_ref().expect("decided at the pole");
+        assert_eq!(pole.stable(), Some(stable), "φ̇ = {rate}");
+        assert_eq!(c * c * rate * rate > 4.0 * a * m * g * l, stable);
+    }
 }

@@ -384,3 +384,45 @@ fn same(a: &[Vec<Expr>], b: &[Vec<Expr>]) -> bool {
         .zip(b.iter().flatten())
         .all(|(x, y)| (*x - *y).is_zero())
 }
+
+/// The condition of a steady motion whose linearization in a regular chart `(u, v)` is
+/// isotropic: `M = m I`, `G = γ J`, `K = k I` (a symmetric top sleeping upright, where
+/// `m = A`, `γ = C ω₃`, `k = −m g ℓ`). The two-coordinate gyroscopic conditions then read
+/// `γ² + 4 m k > 0` — Maxwell's `C² ω₃² > 4 A m g ℓ` — with the parameters for which
+/// `positive` holds taken positive.
+#[must_use]
+pub fn isotropic_condition(
+    [m, gamma, k]: [Expr; 3],
+    positive: &dyn Fn(Symbol) -> bool,
+) -> StabilityCondition {
+    let zero = Expr::zero();
+    let mass = vec![vec![m, zero], vec![zero, m]];
+    let gyroscopic = vec![vec![zero, gamma], vec![-gamma, zero]];
+    let stiffness = vec![vec![k, zero], vec![zero, k]];
+    let tests = gyroscopic_conditions(&mass, &gyroscopic, &stiffness).unwrap_or_default();
+    let verdict = match read_all(&tests, positive) {
+        None => Verdict::Never,
+        Some(v) if v.is_empty() => Verdict::Always,
+        Some(v) => Verdict::When(v),
+    };
+    let boundaries = match &verdict {
+        Verdict::When(all) => all
+            .iter()
+            .map(|relation| Boundary {
+                relation: *relation,
+                family: false,
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    StabilityCondition {
+        coordinates: vec!["u".to_owned(), "v".to_owned()],
+        mass,
+        gyroscopic,
+        stiffness,
+        criterion: ConditionCriterion::Gyroscopic,
+        tests,
+        verdict,
+        boundaries,
+    }
+}
