@@ -143,3 +143,45 @@ fn the_sleeping_top_meets_maxwells_criterion_in_the_parameters() {
         assert_eq!(c * c * rate * rate > 4.0 * a * m * g * l, stable);
     }
 }
+
+#[test]
+fn the_two_link_arms_four_equilibria_come_out_in_closed_form() {
+    // Joint angles: sin(θ1 + θ2) in both rest equations, so no equation holds one unknown
+    // until the second is subtracted from the first.
+    let arm = example("two-link-arm.lag");
+    let equilibria = arm.equilibria().unwrap();
+    assert_eq!(equilibria.set.method, lagrange::mechanics::equilibria::Method::Exact);
+    let mut points: Vec<(f64, f64)> = equilibria
+        .set
+        .equilibria
+        .iter()
+        .map(|e| {
+            let exact = e.exact.as_ref().expect("closed form");
+            let value = |x: lagrange::cas::Expr| x.eval(&|_| None).unwrap();
+            (value(exact[0]), value(exact[1]))
+        })
+        .collect();
+    points.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let pi = std::f64::consts::PI;
+    let expected = [(0.0, 0.0), (0.0, pi), (pi, 0.0), (pi, pi)];
+    assert_eq!(points.len(), 4);
+    for (p, e) in points.iter().zip(expected) {
+        assert!((p.0 - e.0).abs() < 1e-12 && (p.1 - e.1).abs() < 1e-12, "{p:?}");
+    }
+    // Hanging straight down is the one stable equilibrium, for every positive parameter.
+    let verdicts: Vec<bool> = equilibria
+        .conditions
+        .at
+        .iter()
+        .map(|c| c.as_ref().expect("a condition").verdict == Verdict::Always)
+        .collect();
+    let hanging = equilibria
+        .set
+        .equilibria
+        .iter()
+        .position(|e| e.values.iter().all(|v| v.abs() < 1e-12))
+        .unwrap();
+    for (k, always) in verdicts.iter().enumerate() {
+        assert_eq!(*always, k == hanging);
+    }
+}
