@@ -56,11 +56,15 @@ fn the_bead_on_a_spinning_parabola_is_stable_iff_omega_squared_is_below_2ag() {
 #[test]
 fn on_the_boundary_the_family_of_equilibria_is_flagged_in_the_text_and_json() {
     let mut bead = example("bead-on-spinning-parabola.lag");
-    bead.set_value("Omega", (2.0_f64 * 2.0 * 9.81).sqrt()).unwrap();
+    bead.set_value("Omega", (2.0_f64 * 2.0 * 9.81).sqrt())
+        .unwrap();
     let equilibria = bead.equilibria().unwrap();
     assert_eq!(equilibria.conditions.on_boundary[0], Some(0));
     let text = equilibria.to_text();
-    assert!(text.contains("in the parameters: stable iff Ω² < 2 a g"), "{text}");
+    assert!(
+        text.contains("in the parameters: stable iff Ω² < 2 a g"),
+        "{text}"
+    );
     assert!(
         text.contains("these values sit on that boundary: at Ω² = 2 a g every r is an equilibrium (a family of equilibria"),
         "{text}"
@@ -85,7 +89,9 @@ fn the_double_pendulum_hangs_stably_for_every_positive_parameter() {
         .zip(&equilibria.linearized)
         .enumerate()
     {
-        let condition = condition.as_ref().expect("a condition at each exact equilibrium");
+        let condition = condition
+            .as_ref()
+            .expect("a condition at each exact equilibrium");
         assert_eq!(condition.criterion, ConditionCriterion::Sylvester);
         let stable = lin.as_ref().unwrap().stable == Some(true);
         let always = condition.verdict == Verdict::Always;
@@ -138,7 +144,9 @@ fn the_sleeping_top_meets_maxwells_criterion_in_the_parameters() {
             .collect();
         assert_eq!(texts, ["C**2*phi_d**2 > 4*A*g*l*m"]);
         // The chart's numeric decision agrees on either side of the boundary.
-        let pole = equilibria.at_poles[upright].as_ref().expect("decided at the pole");
+        let pole = equilibria.at_poles[upright]
+            .as_ref()
+            .expect("decided at the pole");
         assert_eq!(pole.stable(), Some(stable), "φ̇ = {rate}");
         assert_eq!(c * c * rate * rate > 4.0 * a * m * g * l, stable);
     }
@@ -150,7 +158,10 @@ fn the_two_link_arms_four_equilibria_come_out_in_closed_form() {
     // until the second is subtracted from the first.
     let arm = example("two-link-arm.lag");
     let equilibria = arm.equilibria().unwrap();
-    assert_eq!(equilibria.set.method, lagrange::mechanics::equilibria::Method::Exact);
+    assert_eq!(
+        equilibria.set.method,
+        lagrange::mechanics::equilibria::Method::Exact
+    );
     let mut points: Vec<(f64, f64)> = equilibria
         .set
         .equilibria
@@ -166,7 +177,10 @@ fn the_two_link_arms_four_equilibria_come_out_in_closed_form() {
     let expected = [(0.0, 0.0), (0.0, pi), (pi, 0.0), (pi, pi)];
     assert_eq!(points.len(), 4);
     for (p, e) in points.iter().zip(expected) {
-        assert!((p.0 - e.0).abs() < 1e-12 && (p.1 - e.1).abs() < 1e-12, "{p:?}");
+        assert!(
+            (p.0 - e.0).abs() < 1e-12 && (p.1 - e.1).abs() < 1e-12,
+            "{p:?}"
+        );
     }
     // Hanging straight down is the one stable equilibrium, for every positive parameter.
     let verdicts: Vec<bool> = equilibria

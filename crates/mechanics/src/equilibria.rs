@@ -626,7 +626,8 @@ fn solve_exactly(
 /// `x`. The system with `e_i` replaced is equivalent (an invertible combination of its
 /// equations) and involves fewer unknowns, so repeating it ends. `None` when no pair allows it.
 fn eliminate_one(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Expr>> {
-    let involved = |e: Expr| -> usize { unknowns.iter().filter(|q| !e.diff(**q).is_zero()).count() };
+    let involved =
+        |e: Expr| -> usize { unknowns.iter().filter(|q| !e.diff(**q).is_zero()).count() };
     let free_of_unknowns = |e: Expr| unknowns.iter().all(|q| e.diff(*q).is_zero());
     for (i, ei) in equations.iter().enumerate() {
         for (j, ej) in equations.iter().enumerate() {

@@ -293,10 +293,16 @@ fn coefficient(t: Expr) -> f64 {
 fn highest_power(e: Expr) -> i64 {
     match e.node() {
         Node::Symbol(_) => 1,
-        Node::Pow([base, exponent]) if base.as_symbol().is_some() => {
-            exponent.as_number().and_then(cas::Number::to_i64).unwrap_or(1)
-        }
-        _ => e.children().iter().map(|c| highest_power(*c)).max().unwrap_or(0),
+        Node::Pow([base, exponent]) if base.as_symbol().is_some() => exponent
+            .as_number()
+            .and_then(cas::Number::to_i64)
+            .unwrap_or(1),
+        _ => e
+            .children()
+            .iter()
+            .map(|c| highest_power(*c))
+            .max()
+            .unwrap_or(0),
     }
 }
 
@@ -321,7 +327,10 @@ mod tests {
             panic!("not a condition")
         };
         let (left, relation, right) = i.reading_order();
-        assert!(left.equals(w.powi(2)) && relation == "<", "{left} {relation} {right}");
+        assert!(
+            left.equals(w.powi(2)) && relation == "<",
+            "{left} {relation} {right}"
+        );
         assert!(right.equals(2 * a * g));
     }
 

@@ -554,10 +554,19 @@ pub fn stability_condition_paragraphs(
             let boundaries = c.boundary_sentences(to_unicode);
             for b in &boundaries {
                 let mut letters = b.chars();
-                let first: String = letters.next().into_iter().flat_map(char::to_uppercase).collect();
+                let first: String = letters
+                    .next()
+                    .into_iter()
+                    .flat_map(char::to_uppercase)
+                    .collect();
                 text.push_str(&format!(" {first}{}.", letters.as_str()));
             }
-            if let Some(b) = on_boundary.get(i).copied().flatten().and_then(|k| boundaries.get(k)) {
+            if let Some(b) = on_boundary
+                .get(i)
+                .copied()
+                .flatten()
+                .and_then(|k| boundaries.get(k))
+            {
                 text.push_str(&format!(" The model's values sit on that boundary: {b}."));
             }
             Some(text)
