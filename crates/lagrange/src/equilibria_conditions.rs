@@ -11,6 +11,13 @@ use mechanics::linearize::LinearModel;
 use mechanics::stability_condition::{stability_condition, StabilityCondition};
 use serde_json::{json, Value};
 
+/// The condition at equilibrium `i` where the model's coordinates fail (a pole), given
+/// which parameters are positive.
+pub(crate) type AtPole<'a> = dyn Fn(usize, Positive<'_>) -> Option<StabilityCondition> + 'a;
+
+/// Whether a parameter is taken positive.
+pub(crate) type Positive<'a> = &'a dyn Fn(Symbol) -> bool;
+
 /// The condition at each equilibrium (`None` where it is not known in closed form or no
 /// criterion applies), and whether the values sit on one of its boundaries.
 #[derive(Debug, Clone, Default)]
@@ -29,7 +36,7 @@ impl Conditions {
         (model, rest, set): (&LinearModel, &RestEquations, &EquilibriumSet),
         values: &Values,
         positive_names: &[String],
-        at_pole: &dyn Fn(usize, &dyn Fn(Symbol) -> bool) -> Option<StabilityCondition>,
+        at_pole: &AtPole<'_>,
     ) -> Conditions {
         let positive = |s: Symbol| {
             positive_names.iter().any(|n| n == s.name())

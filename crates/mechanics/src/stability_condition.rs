@@ -446,7 +446,7 @@ mod tests {
 
     #[test]
     fn the_isotropic_gyroscopic_case_is_maxwells_criterion() {
-        let (a, c, m, g, l, w) = ["A", "C", "M", "g", "l", "w"].map(Expr::symbol);
+        let [a, c, m, g, l, w] = ["A", "C", "M", "g", "l", "w"].map(Expr::symbol);
         let spin = w.as_symbol();
         let positive = |s: Symbol| Some(s) != spin;
         let condition = isotropic_condition([a, c * w, -(m * g * l)], &positive);
