@@ -246,9 +246,15 @@ fn term_sign(e: Expr, positive: &dyn Fn(Symbol) -> bool) -> Sign {
                 .as_number()
                 .and_then(cas::Number::to_i64)
                 .is_some_and(|k| k % 2 == 0);
+            // A root of even order (`√x`, `x^(3/2)`) is the principal one: never negative
+            // where it is real.
+            let even_root = exponent
+                .as_number()
+                .and_then(|n| n.denom().to_i64())
+                .is_some_and(|d| d % 2 == 0);
             match term_sign(*base, positive) {
                 Sign::Positive => Sign::Positive,
-                _ if even => Sign::NonNegative,
+                _ if even || even_root => Sign::NonNegative,
                 _ => Sign::Unknown,
             }
         }
@@ -342,6 +348,15 @@ mod tests {
         assert_eq!(read_positive(-(m * g) - w.powi(2), &free), Reading::Never);
         // `w` has no known sign, so `w m` decides nothing.
         assert!(matches!(read_positive(w * m - g, &free), Reading::When(_)));
+    }
+
+    #[test]
+    fn a_square_root_is_never_negative() {
+        let (m, c) = (Expr::symbol("m"), Expr::symbol("C"));
+        let root = (m.powi(2) - c.powi(2)).sqrt();
+        let free = positive_but(&[]);
+        assert_eq!(read_positive(m * root, &free), Reading::Always);
+        assert_eq!(read_positive(-(m * root), &free), Reading::Never);
     }
 
     #[test]
