@@ -621,11 +621,25 @@ fn solve_exactly(
     None
 }
 
+/// The most unknowns [`eliminate_one`] works on.
+const MAX_ELIMINATION_UNKNOWNS: usize = 6;
+
+/// The longest equation (terms of its normal form's numerator) [`eliminate_one`] works on.
+const MAX_ELIMINATION_TERMS: usize = 200;
+
 /// One step of Gaussian elimination on nonlinear equations: `e_i − c e_j` with
 /// `c = (∂e_i/∂x)/(∂e_j/∂x)` free of every unknown, so that the difference no longer holds
 /// `x`. The system with `e_i` replaced is equivalent (an invertible combination of its
 /// equations) and involves fewer unknowns, so repeating it ends. `None` when no pair allows it.
 fn eliminate_one(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Expr>> {
+    // Each try divides two derivatives: on many unknowns or long equations the pairs cost
+    // more than the numeric search they would save.
+    let long = equations
+        .iter()
+        .any(|e| e.term_count() > MAX_ELIMINATION_TERMS);
+    if unknowns.len() > MAX_ELIMINATION_UNKNOWNS || long {
+        return None;
+    }
     let involved =
         |e: Expr| -> usize { unknowns.iter().filter(|q| !e.diff(**q).is_zero()).count() };
     let free_of_unknowns = |e: Expr| unknowns.iter().all(|q| e.diff(*q).is_zero());
