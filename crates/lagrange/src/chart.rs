@@ -20,7 +20,7 @@
 //! `w = ψ + φ`) are left free, as elsewhere.
 
 use cas::{Expr, Symbol};
-use mechanics::equilibria::Values;
+use mechanics::equilibria::{spin_rate, Values};
 use mechanics::Equations;
 
 /// An equilibrium or steady motion at a pole of the coordinates, decided in a regular chart.
@@ -725,4 +725,88 @@ impl ChartLagrangian {
         }
         sums
     }
+}
+
+/// The steady motion at the pole `q` (exact values `exact`) stated in the parameters, when
+/// its chart linearization is isotropic (`PoleSpin::isotropic`) and one coordinate turning
+/// with the azimuth is cyclic (the top's `w = ψ + φ`): `m`, `γ`, `k` of
+/// `mechanics::stability_condition::isotropic_condition` from the chart's Routhian at
+/// constant momentum `p = M'_ww ω` of the cyclic coordinate, along the polar angle:
+///
+/// `m = M'_θθ − M'_θw²/M'_ww`, `γ = d²/dθ² (p M'_wα/M'_ww)`, `k = d²/dθ² (V + p²/(2 M'_ww))`
+///
+/// at `θ*`, with `M' = Tᵀ M T` the mass matrix in `(θ, α, w)`. (Smoothness in `(u, v)` makes
+/// the Routhian's linear term `a(θ) dα = ½ γ r² dα`, whose curl is `γ`.)
+pub(crate) fn spin_condition_at_pole(
+    equations: &Equations,
+    (q, exact): (&[f64], &[Expr]),
+    spinning: &[(usize, f64)],
+    values: &Values,
+    positive: &dyn Fn(Symbol) -> bool,
+) -> Option<mechanics::stability_condition::StabilityCondition> {
+    let n = q.len();
+    let turning: Vec<usize> = spinning.iter().map(|(i, _)| *i).collect();
+    let pole = Pole::find(equations, q, values, &turning)?;
+    if n != 3 || exact.len() != n {
+        return None;
+    }
+    let w = (0..n).find(|&k| k != pole.polar && k != pole.alpha)?;
+    if !equations.lagrangian().diff(pole.symbols[w]).is_zero() {
+        return None;
+    }
+    let companion = small_fraction(pole.companion(w))?;
+    // q̇ = T (θ̇, α̇, ẇ): the coordinate w turns with the azimuth by its companion factor.
+    let order = [pole.polar, pole.alpha, w];
+    let transform = |row: usize, column: usize| -> Expr {
+        match (row == order[column], row == w && column == 1) {
+            (true, _) => Expr::one(),
+            (_, true) => companion,
+            _ => Expr::zero(),
+        }
+    };
+    let m = equations.mass_matrix();
+    let chart_mass = |a: usize, b: usize| -> Expr {
+        let terms = (0..n).flat_map(|i| (0..n).map(move |j| (i, j)));
+        Expr::add_all(terms.map(|(i, j)| transform(i, a) * m[i][j] * transform(j, b)))
+    };
+    // Along the polar angle: every other coordinate at its exact value.
+    let theta = pole.symbols[pole.polar];
+    let along: Vec<(Expr, Expr)> = (0..n)
+        .filter(|&k| k != pole.polar)
+        .map(|k| (Expr::from_symbol(pole.symbols[k]), exact[k]))
+        .collect();
+    let at_pole = |e: Expr| -> Expr {
+        let pairs = [(Expr::from_symbol(theta), exact[pole.polar])];
+        e.subs(&pairs).normal()
+    };
+    let [m_tt, m_tw, m_ww, m_wa] =
+        [(0, 0), (0, 2), (2, 2), (2, 1)].map(|(a, b)| chart_mass(a, b).subs(&along).normal());
+    let names = equations.coordinates();
+    let rate = |k: usize| {
+        if turning.contains(&k) {
+            spin_rate(&names[k])
+        } else {
+            Expr::zero()
+        }
+    };
+    let omega = rate(w) - companion * rate(pole.alpha);
+    let momentum = at_pole(m_ww * omega);
+    let twice = |e: Expr| at_pole(e.diff(theta).diff(theta));
+    let mass = at_pole(m_tt - m_tw.powi(2) / m_ww);
+    let gamma = twice(momentum * m_wa / m_ww);
+    let potential = equations.potential_energy().subs(&along);
+    let stiffness = twice(potential + momentum.powi(2) / (2 * m_ww));
+    Some(mechanics::stability_condition::isotropic_condition(
+        [mass, gamma, stiffness],
+        positive,
+    ))
+}
+
+/// `x` as an exact fraction with a denominator up to 12 (a companion factor, ±1 for the
+/// top), or `None`.
+fn small_fraction(x: f64) -> Option<Expr> {
+    (1..=12_i64).find_map(|d| {
+        let k = (x * d as f64).round();
+        ((x * d as f64 - k).abs() < 1e-9).then(|| Expr::rational(k as i64, d))?
+    })
 }

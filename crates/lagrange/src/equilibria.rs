@@ -13,6 +13,7 @@ use serde_json::Value;
 use crate::assign::{AssignmentError, Range};
 use crate::chart::AtPole;
 use crate::chart_modes::ChartModes;
+use crate::equilibria_conditions::{with_condition_lines, Conditions};
 use crate::{Analysis, Error};
 
 /// The search range of a coordinate that is not an angle, unless one is given.
@@ -46,6 +47,9 @@ pub struct Equilibria {
     /// At a rest state on a pole of the coordinates, the linearization in the regular chart
     /// (`None` elsewhere; crate::chart_modes).
     pub pole_modes: Vec<Option<ChartModes>>,
+    /// At each equilibrium known in closed form, the stability condition in the parameters
+    /// (crate::equilibria_conditions).
+    pub conditions: Conditions,
 }
 
 /// One step of a parameter sweep: the value, the equilibria there, the linearization about
@@ -108,7 +112,8 @@ impl Equilibria {
     #[must_use]
     pub fn to_text(&self) -> String {
         let text = print::equilibria_text(&self.rest, &self.set, &self.linearized);
-        crate::chart::with_pole_sentences(&text, &self.at_poles)
+        let text = crate::chart::with_pole_sentences(&text, &self.at_poles);
+        with_condition_lines(&text, &self.conditions)
     }
 
     /// [`Equilibria::to_text`] as JSON (docs/json.md).
@@ -120,6 +125,7 @@ impl Equilibria {
                 "at_poles".to_owned(),
                 crate::chart::poles_json(&self.at_poles),
             );
+            object.insert("stability_conditions".to_owned(), self.conditions.json());
         }
         json
     }
@@ -130,7 +136,8 @@ impl Equilibria {
     pub fn linearized_text(&self, only: Option<usize>, deviations: Deviations<'_>) -> String {
         let (r, set, lin, inputs) = (&self.rest, &self.set, &self.linearized, &self.inputs);
         let text = print::linearized_text_with_response(r, set, lin, inputs, only, deviations);
-        crate::chart_modes::with_chart_modes(&text, &self.pole_modes)
+        let text = crate::chart_modes::with_chart_modes(&text, &self.pole_modes);
+        with_condition_lines(&text, &self.conditions)
     }
 
     /// [`Equilibria::linearized_text`] as JSON (docs/json.md).
@@ -141,6 +148,7 @@ impl Equilibria {
         if let Some(object) = json.as_object_mut() {
             let modes = crate::chart_modes::chart_modes_json(&self.pole_modes, only);
             object.insert("at_poles".to_owned(), modes);
+            object.insert("stability_conditions".to_owned(), self.conditions.json());
         }
         json
     }
@@ -213,6 +221,17 @@ impl Analysis {
             let (set, linearized) = prepared.at(&prepared.values)?;
             let at_poles = poles(&prepared, search, &set, &linearized);
             let pole_modes = chart_modes(&prepared, search, &set, &at_poles);
+            let positive: Vec<String> = self
+                .system()
+                .parameters()
+                .iter()
+                .map(|(n, _)| n.clone())
+                .collect();
+            let (model, rest, values) = (&prepared.model, &prepared.rest, &prepared.values);
+            let pole = |i: usize, positive: &dyn Fn(cas::Symbol) -> bool| {
+                pole_condition(&prepared, search, (&set, &at_poles), i, positive)
+            };
+            let conditions = Conditions::of((model, rest, &set), values, &positive, &pole);
             Ok(Equilibria {
                 rest: prepared.rest,
                 set,
@@ -220,6 +239,7 @@ impl Analysis {
                 inputs: prepared.inputs,
                 at_poles,
                 pole_modes,
+                conditions,
             })
         })
     }
@@ -364,6 +384,33 @@ fn chart_modes(
             .flatten()
     })
     .collect()
+}
+
+/// The condition in the parameters of the steady motion `i` at a pole, when the chart
+/// decided it and found it isotropic (crate::chart::spin_condition_at_pole).
+fn pole_condition(
+    prepared: &Prepared,
+    search: &Search,
+    (set, at_poles): (&EquilibriumSet, &[Option<AtPole>]),
+    i: usize,
+    positive: &dyn Fn(cas::Symbol) -> bool,
+) -> Option<mechanics::stability_condition::StabilityCondition> {
+    let Some(Some(AtPole::Spin(spin))) = at_poles.get(i) else {
+        return None;
+    };
+    spin.isotropic?;
+    let e = set.equilibria.get(i)?;
+    let exact = e.exact.as_deref()?;
+    let (_, equations) = &prepared.geometry;
+    let coordinates = equations.coordinates();
+    let spinning: Vec<(usize, f64)> = search
+        .steady
+        .iter()
+        .filter_map(|(q, rate)| Some((coordinates.iter().position(|c| c == q)?, *rate)))
+        .collect();
+    let values = &prepared.values;
+    let point = (e.values.as_slice(), exact);
+    crate::chart::spin_condition_at_pole(equations, point, &spinning, values, positive)
 }
 
 fn unknown(name: &str, known: &[String]) -> Error {

@@ -66,6 +66,7 @@ mod chart;
 mod chart_modes;
 pub mod csv;
 mod equilibria;
+mod equilibria_conditions;
 mod error;
 pub mod expression;
 mod figure;
@@ -88,6 +89,7 @@ pub use assign::{parse_assignment, parse_range, Assignment, AssignmentError, Ran
 pub use chart::{AtPole, PoleSpin, PoleStability};
 pub use chart_modes::ChartModes;
 pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep, DEFAULT_RANGE};
+pub use equilibria_conditions::Conditions as StabilityConditions;
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};

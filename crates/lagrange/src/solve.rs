@@ -85,6 +85,7 @@ impl Analysis {
                         state.as_ref(),
                     ));
                 pole_paragraphs(e, &notation, &mut document.sections);
+                self.condition_paragraphs(&mut document.sections, e);
             }
             Err(why) => {
                 let mut section = Section::new("Equilibria and their stability", 2);

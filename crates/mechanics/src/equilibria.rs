@@ -586,6 +586,12 @@ fn solve_exactly(
         }
         return Some(branches);
     }
+    // No equation in one unknown: eliminate an unknown between two equations, when one's
+    // dependence on it is the other's times a factor free of the unknowns (a two-link arm
+    // with the second angle relative to the first), and solve the triangular system.
+    if let Some(reduced) = eliminate_one(&live, unknowns) {
+        return solve_exactly(&reduced, unknowns, budget);
+    }
     // A linear system in all the unknowns.
     let atoms: Vec<Expr> = unknowns.iter().map(|u| Expr::from_symbol(*u)).collect();
     let linear: Vec<Expr> = live
@@ -611,6 +617,54 @@ fn solve_exactly(
             p.values.insert(*u, x.get(k, 0)?.normal());
         }
         return Some(vec![p]);
+    }
+    None
+}
+
+/// The most unknowns [`eliminate_one`] works on.
+const MAX_ELIMINATION_UNKNOWNS: usize = 6;
+
+/// The longest equation (terms of its normal form's numerator) [`eliminate_one`] works on.
+const MAX_ELIMINATION_TERMS: usize = 200;
+
+/// One step of Gaussian elimination on nonlinear equations: `e_i − c e_j` with
+/// `c = (∂e_i/∂x)/(∂e_j/∂x)` free of every unknown, so that the difference no longer holds
+/// `x`. The system with `e_i` replaced is equivalent (an invertible combination of its
+/// equations) and involves fewer unknowns, so repeating it ends. `None` when no pair allows it.
+fn eliminate_one(equations: &[Expr], unknowns: &[Symbol]) -> Option<Vec<Expr>> {
+    // Each try divides two derivatives: on many unknowns or long equations the pairs cost
+    // more than the numeric search they would save.
+    let long = equations
+        .iter()
+        .any(|e| e.term_count() > MAX_ELIMINATION_TERMS);
+    if unknowns.len() > MAX_ELIMINATION_UNKNOWNS || long {
+        return None;
+    }
+    let involved =
+        |e: Expr| -> usize { unknowns.iter().filter(|q| !e.diff(**q).is_zero()).count() };
+    let free_of_unknowns = |e: Expr| unknowns.iter().all(|q| e.diff(*q).is_zero());
+    for (i, ei) in equations.iter().enumerate() {
+        for (j, ej) in equations.iter().enumerate() {
+            if i == j || involved(*ej) > involved(*ei) {
+                continue;
+            }
+            for x in unknowns {
+                let (di, dj) = (ei.diff(*x), ej.diff(*x));
+                if di.is_zero() || dj.is_zero() {
+                    continue;
+                }
+                let c = (di / dj).normal();
+                if !free_of_unknowns(c) {
+                    continue;
+                }
+                let combined = (*ei - c * *ej).normal();
+                if involved(combined) < involved(*ei) {
+                    let mut out = equations.to_vec();
+                    out[i] = combined;
+                    return Some(out);
+                }
+            }
+        }
     }
     None
 }

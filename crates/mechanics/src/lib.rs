@@ -38,8 +38,10 @@ pub mod equilibria;
 pub mod kane;
 mod kkt;
 pub mod linearize;
+mod parameter_signs;
 mod polynomial_rest;
 mod reactions;
+pub mod stability_condition;
 mod system;
 mod unilateral;
 
@@ -50,6 +52,7 @@ pub use equations::{
     FirstIntegral, MechanicsError, Part,
 };
 pub use kkt::{null_space, KeptRest};
+pub use parameter_signs::Inequality;
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{
     reactions, reactions_of, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release,

@@ -417,7 +417,7 @@ pub fn evaluate_matrix(
         .collect()
 }
 
-fn substitute(m: &[Vec<Expr>], rest: &RestEquations, exact: &[Expr]) -> Vec<Vec<Expr>> {
+pub(crate) fn substitute(m: &[Vec<Expr>], rest: &RestEquations, exact: &[Expr]) -> Vec<Vec<Expr>> {
     let pairs: Vec<(Expr, Expr)> = rest
         .symbols
         .iter()

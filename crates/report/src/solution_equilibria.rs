@@ -3,9 +3,11 @@
 //! decided its stability, then `M0 δq̈ + C0 δq̇ + K0 δq = B0 δu` about each one with its natural
 //! frequencies and modes.
 
+use cas::print::to_unicode;
 use cas::Expr;
 use mechanics::equilibria::{Equilibrium, EquilibriumSet, RestEquations};
 use mechanics::linearize::Linearized;
+use mechanics::stability_condition::StabilityCondition;
 
 use crate::document::{push_sign, Block, Cell, Equation, Math, Notation, Section};
 use crate::equilibria::{free_response_waves, stability_word, LinearizedResult, Wave};
@@ -528,4 +530,46 @@ fn frequencies_sentence(rest: &RestEquations, l: &Linearized) -> String {
         sentence.push_str(&format!(" Damping ratios: {}.", z.join(", ")));
     }
     sentence
+}
+
+/// The stability conditions in the parameters, one paragraph per equilibrium that has one
+/// (`mechanics::stability_condition`): the condition, its criterion, what happens on its
+/// boundaries (a family of equilibria there is said to be one), and whether the model's
+/// values sit on a boundary. `on_boundary` gives, per equilibrium, that boundary's index.
+#[must_use]
+pub fn stability_condition_paragraphs(
+    conditions: &[Option<StabilityCondition>],
+    on_boundary: &[Option<usize>],
+) -> Vec<String> {
+    conditions
+        .iter()
+        .enumerate()
+        .filter_map(|(i, c)| {
+            let c = c.as_ref()?;
+            let mut text = format!(
+                "Equilibrium {i} in the parameters: {} ({}).",
+                c.sentence(to_unicode),
+                c.criterion.sentence()
+            );
+            let boundaries = c.boundary_sentences(to_unicode);
+            for b in &boundaries {
+                let mut letters = b.chars();
+                let first: String = letters
+                    .next()
+                    .into_iter()
+                    .flat_map(char::to_uppercase)
+                    .collect();
+                text.push_str(&format!(" {first}{}.", letters.as_str()));
+            }
+            if let Some(b) = on_boundary
+                .get(i)
+                .copied()
+                .flatten()
+                .and_then(|k| boundaries.get(k))
+            {
+                text.push_str(&format!(" The model's values sit on that boundary: {b}."));
+            }
+            Some(text)
+        })
+        .collect()
 }
