@@ -79,6 +79,7 @@ mod simulate;
 mod solve;
 mod steady;
 pub mod steady_print;
+mod working;
 mod written;
 
 pub use analysis::{Analysis, Source};

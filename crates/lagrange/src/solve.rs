@@ -109,6 +109,7 @@ impl Analysis {
                 let mut section = report::solution_reactions::reactions_section(
                     &reactions.reactions,
                     &reactions.unilateral,
+                    &self.reaction_working(),
                     &notation,
                 );
                 self.projection_part(&mut section, &notation);

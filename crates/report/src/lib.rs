@@ -4,6 +4,7 @@
 
 pub mod accelerations;
 pub mod document;
+pub mod reaction_working;
 mod reactions;
 pub mod solution;
 pub mod solution_equilibria;
