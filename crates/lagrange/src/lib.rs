@@ -72,6 +72,7 @@ mod floquet;
 mod formats;
 mod modes;
 mod output;
+mod plot_extras;
 mod projection;
 mod reactions;
 mod runs;
