@@ -234,7 +234,12 @@ fn cumulative_integral(times: &[f64], values: &[f64]) -> Vec<f64> {
         // The window of `width` samples that holds the interval [i − 1, i], centred on it.
         let start = (i - 1).saturating_sub(1).min(n - width);
         let window = start..start + width;
-        total += interval_integral(&times[window.clone()], &values[window], times[i - 1], times[i]);
+        total += interval_integral(
+            &times[window.clone()],
+            &values[window],
+            times[i - 1],
+            times[i],
+        );
         out.push(total);
     }
     out

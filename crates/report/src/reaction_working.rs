@@ -117,42 +117,6 @@ fn working_terms(working: &Working) -> usize {
     }
 }
 
-fn released(
-    s: &mut Section,
-    name: &str,
-    point: &str,
-    equations: &[(String, Vector, Expr)],
-    notation: &Notation,
-) {
-    let moved: Vec<String> = equations
-        .iter()
-        .map(|(axis, d, _)| format!("u_{axis} {}", direction(d).0))
-        .collect();
-    let (r_u, r_l) = (
-        format!("R_{name}"),
-        format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", name.replace('_', r"\_")),
-    );
-    s.paragraph(format!(
-        "Working: released, the point {point} moves with the bodies by {} (u = 0 on the \
-         constrained motion). The Lagrange equation of each displacement at u = u̇ = ü = 0, \
-         d/dt ∂{l}/∂u̇ − ∂{l}/∂u − Q_u = {r_u} · ∂{point}/∂u, is the reaction's component along it:",
-        moved.join(" + "),
-        l = notation.lagrangian().unicode,
-    ));
-    let lines = equations
-        .iter()
-        .map(|(_, d, e)| {
-            let (du, dl) = direction(d);
-            Equation::new(
-                Math::label(format!("{r_u} · {du}"), format!(r"{r_l} \cdot {dl}")),
-                notation.math(*e),
-            )
-        })
-        .collect();
-    s.equations(lines);
-    s.paragraph("With the accelerations of the equations of motion put in:");
-}
-
 /// The working without the coordinates on which the generalized reaction `r` is zero.
 fn acting(r: &Reaction, working: &Working) -> Working {
     let acts = |q: &String| {
@@ -176,40 +140,106 @@ fn acting(r: &Reaction, working: &Working) -> Working {
     }
 }
 
-fn freed(s: &mut Section, equations: &[(String, Expr)], notation: &Notation) {
-    s.paragraph(format!(
-        "Working: the constraint is integrable and was used to eliminate a coordinate;          without it every coordinate is free, and each one's Lagrange equation,          d/dt ∂{l}/∂q̇ − ∂{l}/∂q − Q = Q^R, gives the generalized reaction on it (written on          the constrained motion):",
-        l = notation.lagrangian().unicode,
-    ));
-    let lines = equations
+fn released(
+    s: &mut Section,
+    name: &str,
+    point: &str,
+    equations: &[(String, Vector, Expr)],
+    notation: &Notation,
+) {
+    let moved: Vec<String> = equations
         .iter()
-        .map(|(q, e)| {
-            let q_math = Math::expr(Expr::coordinate(q));
-            Equation::new(
-                Math::label(
-                    format!("Q^R_{}", q_math.unicode),
-                    format!("Q^R_{{{}}}", q_math.latex),
-                ),
-                notation.math(*e),
-            )
-        })
+        .map(|(axis, d, _)| format!("u_{axis} {}", direction(d).0))
         .collect();
+    let given = if equations.iter().any(|(_, d, _)| direction(d).0 == "ê") {
+        " (ê the unit direction the model gives)"
+    } else {
+        ""
+    };
+    let (r_u, r_l) = (
+        format!("R_{name}"),
+        format!(r"\vec{{R}}_{{\mathrm{{{}}}}}", name.replace('_', r"\_")),
+    );
+    s.paragraph(format!(
+        "Working: released, the point {point} moves with the bodies by {}{given}; u = 0 on \
+         the constrained motion. The Lagrange equation of each displacement at u = u̇ = ü = 0 \
+         is the reaction's component along it:",
+        moved.join(" + "),
+    ));
+    let mut lines = vec![general(
+        "u",
+        Math::label(
+            format!("{r_u} · ∂{point}/∂u"),
+            format!(
+                r"{r_l} \cdot \frac{{\partial \vec{{r}}_{{{}}}}}{{\partial u}}",
+                point.replace('_', r"\_")
+            ),
+        ),
+        notation,
+    )];
+    lines.extend(equations.iter().map(|(_, d, e)| {
+        let (du, dl) = direction(d);
+        Equation::new(
+            Math::label(format!("{r_u} · {du}"), format!(r"{r_l} \cdot {dl}")),
+            notation.math(*e),
+        )
+    }));
+    s.equations(lines);
+    s.paragraph("With the accelerations of the equations of motion put in:");
+}
+
+/// The general line of a working, `lhs = d/dt ∂ℒ/∂q̇ − ∂ℒ/∂q − Q_q` for coordinate `q`, in the
+/// order of the lines under it (the reaction's component on the left).
+fn general(q: &str, lhs: Math, notation: &Notation) -> Equation {
+    let (lu, ll) = (&notation.lagrangian().unicode, &notation.lagrangian().latex);
+    Equation::new(
+        lhs,
+        Math::label(
+            format!("d/dt ∂{lu}/∂{q}̇ − ∂{lu}/∂{q} − Q_{q}"),
+            format!(
+                r"\frac{{d}}{{dt}} \frac{{\partial {ll}}}{{\partial \dot{{{q}}}}} - \frac{{\partial {ll}}}{{\partial {q}}} - Q_{{{q}}}"
+            ),
+        ),
+    )
+}
+
+fn freed(s: &mut Section, equations: &[(String, Expr)], notation: &Notation) {
+    s.paragraph(
+        "Working: the constraint is integrable and was used to eliminate a coordinate. Without \
+         it every coordinate is free, and each one's Lagrange equation gives the generalized \
+         reaction on it, written here on the constrained motion:",
+    );
+    let mut lines = vec![general("q", Math::label("Q^R_q", "Q^R_{q}"), notation)];
+    lines.extend(equations.iter().map(|(q, e)| {
+        let q_math = Math::expr(Expr::coordinate(q));
+        Equation::new(
+            Math::label(
+                format!("Q^R_{}", q_math.unicode),
+                format!("Q^R_{{{}}}", q_math.latex),
+            ),
+            notation.math(*e),
+        )
+    }));
     s.equations(lines);
     s.paragraph("With the accelerations of the equations of motion put in:");
 }
 
 fn multiplier(s: &mut Section, equations: &[(String, Expr, Expr)], notation: &Notation) {
-    s.paragraph(format!(
+    s.paragraph(
         "Working: the constraint is kept with its multiplier λ (Lagrange's equations of the \
-         first kind, a the constraint's coefficient of q̇ in its velocity form): each \
-         coordinate's equation reads Q^R = −a λ = d/dt ∂{l}/∂q̇ − ∂{l}/∂q − Q, the reaction's \
-         generalized component on the left:",
-        l = notation.lagrangian().unicode,
-    ));
-    let lines = equations
-        .iter()
-        .map(|(_, lhs, rhs)| Equation::new(notation.math(*rhs), notation.math(*lhs)))
-        .collect();
+         first kind; a_q is the constraint's coefficient of q̇ in its velocity form). Each \
+         coordinate's equation gives the reaction's generalized component −a_q λ:",
+    );
+    let mut lines = vec![general(
+        "q",
+        Math::label("−a_q λ", r"-a_{q} \lambda"),
+        notation,
+    )];
+    lines.extend(
+        equations
+            .iter()
+            .map(|(_, lhs, rhs)| Equation::new(notation.math(*rhs), notation.math(*lhs))),
+    );
     s.equations(lines);
     s.paragraph(
         "Solved for λ together with the constraint's equation, with the accelerations of the \
