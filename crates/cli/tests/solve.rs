@@ -135,7 +135,7 @@ fn the_simulation_section_stops_where_a_contact_is_lost() {
         "{text}"
     );
     let theta: f64 = text
-        .split("theta = ")
+        .split(": θ = ")
         .nth(1)
         .and_then(|rest| rest.split(',').next())
         .and_then(|v| v.parse().ok())

@@ -74,6 +74,7 @@ mod floquet;
 mod formats;
 mod modes;
 mod output;
+mod plot_extras;
 mod projection;
 mod question;
 mod reactions;
@@ -82,6 +83,7 @@ mod simulate;
 mod solve;
 mod steady;
 pub mod steady_print;
+mod working;
 mod written;
 
 pub use analysis::{Analysis, Source};

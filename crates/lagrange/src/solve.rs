@@ -111,6 +111,7 @@ impl Analysis {
                 let mut section = report::solution_reactions::reactions_section(
                     &reactions.reactions,
                     &reactions.unilateral,
+                    &self.reaction_working(),
                     &notation,
                 );
                 self.projection_part(&mut section, &notation);
@@ -288,9 +289,11 @@ impl Analysis {
             // A sampled run has no output limit and no caller to halt it.
             other => RunEnd::Failed(format!("at t = {}: {}", run.t, other.word())),
         };
+        let (extras, balance) = self.plot_extras(&run);
         let figure = figures.map(|f| {
             let file = format!("{}-motion.{}", f.stem, f.extension);
-            report::plot_run(&f.directory.join(&file), &f.stem, &run.columns, &run.rows)
+            let path = f.directory.join(&file);
+            report::plot_run_with(&path, &f.stem, &run.columns, &run.rows, &extras)
                 .map(|()| file)
                 .map_err(|e| e.to_string())
         });
@@ -305,6 +308,8 @@ impl Analysis {
                 .initial_correction()
                 .map(|c| c.describe(&run.columns)),
             figure,
+            balance,
+            outputs: extras.outputs.iter().map(|o| o.label.clone()).collect(),
         };
         simulation_section(Ok(&report))
     }

@@ -96,3 +96,70 @@ fn an_unknown_frame_is_an_error_of_the_model() {
     let text = PENDULUM.replace("along origin - P", "in P");
     assert!(Analysis::from_text(&text).is_err());
 }
+
+/// The pendulum with its bob as a body `rod` (a point mass: no inertia of its own), so that
+/// the rod is a name of the model.
+const ROD_PENDULUM: &str = "\
+coordinates theta
+parameters  m = 1, l = 1, g = 9.81
+frame N
+frame B = N rotated theta about z
+point P = l*sin(theta)*N.x - l*cos(theta)*N.y
+body rod mass m at P frame B inertia 0, 0, 0
+gravity -g*N.y
+reaction pivot: hinge origin on rod along rod
+";
+
+#[test]
+fn along_a_body_is_along_the_line_from_its_centre_to_the_point() {
+    let analysis = Analysis::from_text(ROD_PENDULUM).expect("the model checks");
+    let projected = analysis.projected_reactions().expect("projected");
+    let p = &projected[0];
+    assert_eq!(p.onto, "rod");
+    let (m, g, l) = (Expr::symbol("m"), Expr::symbol("g"), Expr::symbol("l"));
+    let theta = Expr::coordinate("theta");
+    let tension = m * (l * Expr::rate("theta", 1).powi(2) + g * theta.cos());
+    assert!(
+        p.components[0].1.equals(tension),
+        "{} ≠ {tension}",
+        p.components[0].1
+    );
+    let text = analysis
+        .solution(None)
+        .expect("solution")
+        .document
+        .to_text();
+    assert!(text.contains("pivot along rod"), "{text}");
+    assert!(text.contains("R_pivot · ê = m (ℓ θ̇² + g cos θ)"), "{text}");
+}
+
+#[test]
+fn along_the_inverted_pendulum_rod_is_its_axial_force() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/seed/7.4-inverted-pendulum.lag");
+    let text = std::fs::read_to_string(path).expect("the seed model");
+    let text = text.replace(
+        "reaction hinge_A: hinge A on rod\n",
+        "reaction hinge_A: hinge A on rod along rod\n",
+    );
+    let analysis = Analysis::from_text(&text).expect("the model checks");
+    let projected = analysis.projected_reactions().expect("projected");
+    let force = analysis
+        .reactions()
+        .expect("reactions")
+        .and_then(|r| r.reactions.iter().find(|r| r.name == "hinge_A"))
+        .and_then(|r| r.force)
+        .expect("the hinge force");
+    // From G back to A is −B.y = (sin θ, −cos θ): the rod's axial force, positive in tension.
+    let theta = Expr::coordinate("theta");
+    let axial = force[0] * theta.sin() - force[1] * theta.cos();
+    assert!(projected[0].components[0].1.equals(axial));
+}
+
+#[test]
+fn along_a_name_that_is_no_body_nor_vector_is_an_error() {
+    let text = ROD_PENDULUM.replace("along rod", "along N");
+    assert!(Analysis::from_text(&text).is_err());
+    let text = ROD_PENDULUM.replace("along rod", "along theta");
+    assert!(Analysis::from_text(&text).is_err());
+}

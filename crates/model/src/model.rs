@@ -588,6 +588,14 @@ pub enum Projection {
     Frame(FrameId),
     /// The component along a direction (a vector, normalised when projected).
     Along(Expr),
+    /// `along BODY`: the component along the line from the body's centre to the reaction's
+    /// point (a rod's axis; positive when it pulls the body towards the point).
+    AlongBody {
+        /// The body's name, as the report says it.
+        body: String,
+        /// The direction: the reaction's point less the body's centre.
+        direction: Expr,
+    },
 }
 
 /// An initial value of a coordinate or of its rate.

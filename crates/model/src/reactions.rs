@@ -415,15 +415,8 @@ pub fn reaction_projections(model: &Model) -> Result<Vec<ReactionProjection>, Lo
                 }
                 (format!("frame {name}"), axes)
             }
-            Projection::Along(d) => {
-                let n = probe_vector(model, d)?;
-                let n2 = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).normal();
-                if n2.is_zero() {
-                    return Err(LowerError::ZeroDirection { span: d.span });
-                }
-                let text = model.display(d).to_string();
-                (text, vec![("along".to_string(), n)])
-            }
+            Projection::Along(d) => (model.display(d).to_string(), along(model, d)?),
+            Projection::AlongBody { body, direction } => (body.clone(), along(model, direction)?),
         };
         out.push(ReactionProjection {
             name: r.name.name.clone(),
@@ -432,6 +425,16 @@ pub fn reaction_projections(model: &Model) -> Result<Vec<ReactionProjection>, Lo
         });
     }
     Ok(out)
+}
+
+/// The one axis of `… along d`: `d` lowered, not normalised.
+fn along(model: &Model, d: &crate::model::Expr) -> Result<Vec<(String, Vector)>, LowerError> {
+    let n = probe_vector(model, d)?;
+    let n2 = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).normal();
+    if n2.is_zero() {
+        return Err(LowerError::ZeroDirection { span: d.span });
+    }
+    Ok(vec![("along".to_string(), n)])
 }
 
 /// A vector expression lowered, through a probe force whose vector it is.

@@ -4,6 +4,7 @@
 
 pub mod accelerations;
 pub mod document;
+pub mod reaction_working;
 mod reactions;
 pub mod solution;
 pub mod solution_equilibria;
@@ -17,7 +18,7 @@ mod eom_text;
 mod plot;
 
 pub use bifurcation::{plot_bifurcation, BifurcationPoint};
-pub use plot::{plot_run, PlotError};
+pub use plot::{plot_run, plot_run_with, OutputSeries, PlotError, PlotExtras};
 
 use cas::print::to_sympy;
 use mechanics::{Equations, System};

@@ -1,6 +1,7 @@
-//! Plots of a simulation run, with `plotters`: time histories of the coordinates, phase
-//! portraits (`q` against `q̇`), and the energy error (with the constraint drift when there are
-//! constraints), in one figure. SVG or PNG, chosen by the file's extension. The text uses the
+//! Plots of a simulation run, with `plotters`: time histories of the coordinates, the model's
+//! outputs ([`PlotExtras`]), phase portraits (`q` against `q̇`), and the energy error — or,
+//! when inputs do work, the energy balance — with the constraint drift when there are
+//! constraints, in one figure. SVG or PNG, chosen by the file's extension. The text uses the
 //! bundled DejaVu Sans (assets/fonts, with its licence), so no system font is needed.
 
 use std::path::Path;
@@ -52,6 +53,28 @@ pub(crate) fn register_font() {
     });
 }
 
+/// A quantity the model asks to record (`output tip_height = …`), along a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSeries {
+    /// Its label as the model writes it.
+    pub label: String,
+    /// Its unit when the model's geometry says it (`m` for a height), else `None`.
+    pub unit: Option<&'static str>,
+    /// Its value at each row of the run (NaN where it does not evaluate).
+    pub values: Vec<f64>,
+}
+
+/// What a solution's plot shows beside the run's own columns.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PlotExtras {
+    /// The model's scalar outputs, in a panel of their own under the coordinates.
+    pub outputs: Vec<OutputSeries>,
+    /// When inputs and non-conservative forces do work: at each row the energy balance
+    /// `(E − E₀ − W)/|E₀|` (`W` their work since the start; `|E₀|` taken as 1 when `E₀` is
+    /// 0), plotted instead of the relative energy error, which is then the work done.
+    pub balance: Option<Vec<f64>>,
+}
+
 /// Draws the run: `columns` as written by `lagrange simulate` (`t`, the n coordinates, the n
 /// rates `q_d`, `energy_error`, `constraint_drift`), `rows` the data.
 ///
@@ -63,6 +86,21 @@ pub fn plot_run(
     columns: &[String],
     rows: &[Vec<f64>],
 ) -> Result<(), PlotError> {
+    plot_run_with(path, title, columns, rows, &PlotExtras::default())
+}
+
+/// [`plot_run`] with the model's outputs in a panel of their own and, when inputs do work, the
+/// energy balance in place of the energy error ([`PlotExtras`]).
+///
+/// # Errors
+/// As [`plot_run`].
+pub fn plot_run_with(
+    path: &Path,
+    title: &str,
+    columns: &[String],
+    rows: &[Vec<f64>],
+    extras: &PlotExtras,
+) -> Result<(), PlotError> {
     register_font();
     let name = path.display().to_string();
     let drawing = |e: &dyn std::fmt::Display| PlotError::Drawing {
@@ -73,16 +111,23 @@ pub fn plot_run(
         return Err(PlotError::NoData);
     }
     let n = (columns.len() - 3) / 2;
-    let size = (1200, 900);
+    let plot = Plot {
+        title,
+        columns,
+        rows,
+        n,
+        extras,
+    };
+    let size = (1200, if extras.outputs.is_empty() { 900 } else { 1200 });
     match path.extension().and_then(|e| e.to_str()) {
         Some(ext) if ext.eq_ignore_ascii_case("svg") => {
             let root = SVGBackend::new(path, size).into_drawing_area();
-            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            draw(&root, &plot).map_err(|e| drawing(&e))?;
             root.present().map_err(|e| drawing(&e))
         }
         Some(ext) if ext.eq_ignore_ascii_case("png") => {
             let root = BitMapBackend::new(path, size).into_drawing_area();
-            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            draw(&root, &plot).map_err(|e| drawing(&e))?;
             root.present().map_err(|e| drawing(&e))
         }
         _ => Err(PlotError::Format { path: name }),
@@ -91,20 +136,99 @@ pub fn plot_run(
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
-fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    title: &str,
-    columns: &[String],
-    rows: &[Vec<f64>],
+/// What one figure draws.
+struct Plot<'a> {
+    title: &'a str,
+    columns: &'a [String],
+    rows: &'a [Vec<f64>],
     n: usize,
-) -> DrawResult<DB> {
+    extras: &'a PlotExtras,
+}
+
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot<'_>) -> DrawResult<DB> {
+    let (columns, rows, n) = (plot.columns, plot.rows, plot.n);
     root.fill(&WHITE)?;
-    let root = root.titled(title, (FAMILY, 26))?;
+    let root = root.titled(plot.title, (FAMILY, 26))?;
     let (top, bottom) = root.split_vertically(480);
+    let bottom = if plot.extras.outputs.is_empty() {
+        bottom
+    } else {
+        let (outputs, rest) = bottom.split_vertically(300);
+        draw_outputs(&outputs, rows, &plot.extras.outputs)?;
+        rest
+    };
     let (phase, energy_panel) = bottom.split_horizontally(600);
     draw_histories(&top, columns, rows, n)?;
     draw_portraits(&phase, rows, n)?;
-    draw_energy(&energy_panel, rows, n)
+    draw_energy(&energy_panel, rows, n, plot.extras.balance.as_deref())
+}
+
+/// The model's outputs against time, each labelled with its unit; the axis names the unit
+/// when there is one output or they share it.
+fn draw_outputs<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    rows: &[Vec<f64>],
+    outputs: &[OutputSeries],
+) -> DrawResult<DB> {
+    let t_range = time_range(rows);
+    let series: Vec<Vec<(f64, f64)>> = outputs
+        .iter()
+        .map(|o| {
+            rows.iter()
+                .zip(&o.values)
+                .map(|(r, v)| (r[0], *v))
+                .filter(|(_, v)| v.is_finite())
+                .collect()
+        })
+        .collect();
+    let (lo, hi) = bounds(series.iter().flatten().map(|p| p.1));
+    let with_unit = |o: &OutputSeries| match o.unit {
+        Some(u) => format!("{} ({u})", o.label),
+        None => o.label.clone(),
+    };
+    let axis = match outputs {
+        [one] => with_unit(one),
+        [first, ..] if outputs.iter().all(|o| o.unit == first.unit) && first.unit.is_some() => {
+            format!("outputs ({})", first.unit.unwrap_or_default())
+        }
+        _ => "outputs (units as labelled)".to_owned(),
+    };
+    let mut chart = ChartBuilder::on(area)
+        .margin(12)
+        .caption("outputs of the model", (FAMILY, 20))
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    let (t_span, y_span) = (t_range.1 - t_range.0, hi - lo);
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc(axis)
+        .x_label_formatter(&|v| tick(*v, t_span))
+        .y_label_formatter(&|v| tick(*v, y_span))
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    for (k, (points, output)) in series.iter().zip(outputs).enumerate() {
+        let color = PALETTE[(k + 3) % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(1),
+            ))?
+            .label(with_unit(output))
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font((FAMILY, 15))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()?;
+    Ok(())
 }
 
 /// A column's name as the report writes it: `theta` → `θ`, `phi1_d` → `φ̇1`.
@@ -248,14 +372,32 @@ fn draw_portraits<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The energy error, and the constraint drift when constrained.
+/// The energy error (or, when inputs do work, the energy balance), and the constraint drift
+/// when constrained.
 fn draw_energy<DB: DrawingBackend>(
     panel: &DrawingArea<DB, Shift>,
     rows: &[Vec<f64>],
     n: usize,
+    balance: Option<&[f64]>,
 ) -> DrawResult<DB> {
     let t_range = time_range(rows);
-    let energy = series(rows, 2 * n + 1);
+    let energy = match balance {
+        Some(b) => rows
+            .iter()
+            .zip(b)
+            .map(|(r, v)| (r[0], *v))
+            .filter(|(_, v)| v.is_finite())
+            .collect(),
+        None => series(rows, 2 * n + 1),
+    };
+    let (what, label) = if balance.is_some() {
+        (
+            "energy balance (E − E₀ − W)/|E₀|",
+            "E − E₀ − W of the inputs",
+        )
+    } else {
+        ("relative energy error", "energy error")
+    };
     let drift = series(rows, 2 * n + 2);
     let constrained = drift.iter().any(|p| p.1 != 0.0);
     let values = energy
@@ -267,9 +409,9 @@ fn draw_energy<DB: DrawingBackend>(
         .margin(12)
         .caption(
             if constrained {
-                "energy error and constraint drift"
+                format!("{what} and constraint drift")
             } else {
-                "relative energy error"
+                what.to_owned()
             },
             (FAMILY, 20),
         )
@@ -297,7 +439,7 @@ fn draw_energy<DB: DrawingBackend>(
             energy.iter().copied(),
             PALETTE[0].stroke_width(1),
         ))?
-        .label("energy error")
+        .label(label)
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], PALETTE[0].stroke_width(1)));
     if constrained {
         chart

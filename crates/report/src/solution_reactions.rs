@@ -6,13 +6,16 @@ use cas::Expr;
 use mechanics::{Reaction, ReleaseKind, Unilateral};
 
 use crate::document::{Equation, Math, Notation, Section};
+use crate::reaction_working::{working_blocks, Working};
 use crate::UnilateralReport;
 
-/// The section, from the reactions and their unilateral analyses (same order).
+/// The section, from the reactions, their unilateral analyses and their working (same
+/// order; a reaction without working, or past the end of `working`, shows only its result).
 #[must_use]
 pub fn reactions_section(
     reactions: &[Reaction],
     unilateral: &[Option<UnilateralReport>],
+    working: &[Option<Working>],
     notation: &Notation,
 ) -> Section {
     let mut s = Section::new("Constraint reactions", 2);
@@ -34,6 +37,9 @@ pub fn reactions_section(
             None => format!("{} — {kind}, generalized reaction", r.name),
         };
         s.paragraph(format!("{title}:"));
+        if let Some(w) = working.get(i).and_then(Option::as_ref) {
+            working_blocks(&mut s, r, w, notation);
+        }
         let symbol = match r.kind {
             Some(ReleaseKind::Rope) => "T",
             _ => "N",

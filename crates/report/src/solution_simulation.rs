@@ -46,6 +46,12 @@ pub struct RunReport<'a> {
     /// The plot file (relative to the report) or why it was not written; `None` without a
     /// directory for figures.
     pub figure: Option<Result<String, String>>,
+    /// When inputs and non-conservative forces do work: at the last row, the energy balance
+    /// `(E − E₀ − W)/|E₀|` and the work `W` done since the start (then the relative energy
+    /// error is mostly that work, and is not what tells the run's accuracy).
+    pub balance: Option<(f64, f64)>,
+    /// The model's outputs in the plot, for its caption.
+    pub outputs: Vec<String>,
 }
 
 /// The section; `Err(why)` when the run could not be prepared.
@@ -76,18 +82,26 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
     if let Some(last) = run.last {
         let state: Vec<String> = state_names(run.columns, n)
             .zip(last.iter().skip(1))
-            .map(|(c, v)| format!("{c} = {v:.6}"))
+            .map(|(c, v)| format!("{} = {}", display_name(c), signed(*v)))
             .collect();
-        section.paragraph(format!(
-            "At t = {:.6}: {}. Relative energy error {:.2e}, constraint drift {:.2e}.",
-            last[0],
-            state.join(", "),
-            last.get(run.columns.len().wrapping_sub(2))
-                .copied()
-                .unwrap_or(f64::NAN),
-            last.get(run.columns.len().wrapping_sub(1))
+        let column = |back: usize| {
+            last.get(run.columns.len().wrapping_sub(back))
                 .copied()
                 .unwrap_or(f64::NAN)
+        };
+        let energy = match run.balance {
+            Some((balance, work)) => format!(
+                "The inputs did work W = {} on the system; the energy balance (E − E₀ − W)/|E₀|                  is {balance:.2e} (the energy itself changed by {:.2e} of |E₀|)",
+                signed(work),
+                column(2)
+            ),
+            None => format!("Relative energy error {:.2e}", column(2)),
+        };
+        section.paragraph(format!(
+            "At t = {:.6}: {}. {energy}, constraint drift {:.2e}.",
+            last[0],
+            state.join(", "),
+            column(1)
         ));
     }
     match &run.end {
@@ -113,7 +127,7 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
     match &run.figure {
         Some(Ok(path)) => section.blocks.push(Block::Figure {
             path: path.clone(),
-            caption: "Time histories, phase portraits and energy error of the run.".into(),
+            caption: caption(run),
             width: 90,
         }),
         Some(Err(error)) => {
@@ -124,6 +138,36 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
         }
     }
     section
+}
+
+/// The figure's caption: what its panels show.
+fn caption(run: &RunReport<'_>) -> String {
+    let outputs = if run.outputs.is_empty() {
+        String::new()
+    } else {
+        format!(" the model's outputs ({}),", run.outputs.join(", "))
+    };
+    let energy = if run.balance.is_some() {
+        "energy balance"
+    } else {
+        "energy error"
+    };
+    format!("Time histories,{outputs} phase portraits and {energy} of the run.")
+}
+
+/// A state column's name as the report writes it: `theta` → `θ`, `x_d` → `ẋ`.
+fn display_name(column: &str) -> String {
+    let expr = match column.strip_suffix("_d") {
+        Some(q) => cas::Expr::rate(q, 1),
+        None => cas::Expr::coordinate(column),
+    };
+    cas::print::to_unicode(expr)
+}
+
+/// A number with six decimals and a true minus sign (`−9.600807`), as the report's formulas
+/// write it.
+fn signed(v: f64) -> String {
+    format!("{v:.6}").replace('-', "−")
 }
 
 /// The names of the state columns: the coordinates, then their rates.

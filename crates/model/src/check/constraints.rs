@@ -224,7 +224,7 @@ impl Checker {
         if spec.direction.is_some() && direction.is_none() {
             return;
         }
-        let Some(projection) = self.projection(spec) else {
+        let Some(projection) = self.projection(spec, point) else {
             return;
         };
         if let Some(point) = point {
@@ -244,8 +244,18 @@ impl Checker {
     }
 
     /// The projection of a `reaction NAME: …` statement resolved: `Some(None)` without one,
-    /// `None` when it has errors (reported).
-    fn projection(&mut self, spec: &ast::ReleaseSpec) -> Option<Option<Projection>> {
+    /// `None` when it has errors (reported). `along BODY`, a body's name, is the direction from
+    /// the body's centre to the reaction's point `point` (a rod's axis).
+    fn projection(
+        &mut self,
+        spec: &ast::ReleaseSpec,
+        point: Option<PointId>,
+    ) -> Option<Option<Projection>> {
+        if let (Some(ast::ReleaseProjection::Along(d)), Some(point)) = (&spec.projection, point) {
+            if let Some(along) = self.along_body(d, point) {
+                return Some(Some(along));
+            }
+        }
         match &spec.projection {
             None => Some(None),
             Some(ast::ReleaseProjection::Frame(frame)) => {
@@ -264,6 +274,36 @@ impl Checker {
         }
     }
 
+    /// `along BODY`: the unit vector from the body's centre to the reaction's point, when `d` is
+    /// a body's bare name (a body is no value, so the name means nothing else there).
+    fn along_body(&self, d: &ast::Expr, point: PointId) -> Option<Projection> {
+        let ast::ExprKind::Name(ident) = &d.kind else {
+            return None;
+        };
+        let Some(Target::Body(id)) = self.scope.get(&ident.name).map(|e| e.target) else {
+            return None;
+        };
+        let body = &self.model.bodies[id.index()];
+        let at = |p: PointId| crate::model::Expr {
+            kind: ExprKind::Point(p),
+            span: d.span,
+            ty: Type::Vector,
+        };
+        let direction = crate::model::Expr {
+            kind: ExprKind::Binary {
+                op: ast::BinaryOp::Sub,
+                lhs: Box::new(at(point)),
+                rhs: Box::new(at(body.centre)),
+            },
+            span: d.span,
+            ty: Type::Vector,
+        };
+        Some(Projection::AlongBody {
+            body: body.name.name.clone(),
+            direction,
+        })
+    }
+
     /// `reaction NAME: rolling ROLL normal n`: the rolling constraint's body and contact point.
     fn rolling_release(&mut self, ident: &Ident, spec: &ast::ReleaseSpec, span: Span) {
         let direction = spec
@@ -273,7 +313,11 @@ impl Checker {
         let Some(Target::Constraint(id)) = self.lookup(&spec.point, NameKind::Constraint) else {
             return;
         };
-        let Some(projection) = self.projection(spec) else {
+        let contact = match self.model.constraints[id.index()].kind {
+            ConstraintKind::Rolling { contact, .. } => Some(contact),
+            _ => None,
+        };
+        let Some(projection) = self.projection(spec, contact) else {
             return;
         };
         let ConstraintKind::Rolling { body, contact } = self.model.constraints[id.index()].kind

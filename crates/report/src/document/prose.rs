@@ -121,7 +121,7 @@ fn run_from(words: &[&str], i: usize) -> Option<usize> {
         }
         depth += if k > i { lead.len() } else { 0 } + core.matches('(').count();
         depth = depth.saturating_sub(core.matches(')').count());
-        has_math |= kk == Kind::Math;
+        has_math |= kk == Kind::Math || is_value_of_symbol(words, k);
         if kk != Kind::Operator && has_math {
             last_good = Some(k);
         }
@@ -135,6 +135,17 @@ fn run_from(words: &[&str], i: usize) -> Option<usize> {
         k += 1;
     }
     last_good
+}
+
+/// Whether word `k` is the `=` of `x = 0.5`: a symbol of one letter (and digits) given a
+/// number, which reads as mathematics like `θ = 0.5` beside it (`t = 3.000000`, a state's
+/// `x = 0.030643`), though neither side is surely mathematics by itself.
+fn is_value_of_symbol(words: &[&str], k: usize) -> bool {
+    let core = |k: usize| words.get(k).map(|w| split_punctuation(w).1);
+    core(k) == Some("=")
+        && k > 0
+        && core(k - 1).is_some_and(is_letter_and_digits)
+        && core(k + 1).is_some_and(is_number)
 }
 
 /// A word's leading punctuation, its core and its trailing punctuation. Brackets that the core
@@ -335,6 +346,26 @@ mod tests {
                 Piece::Math(math(r"\dot{\theta} = 0")),
                 Piece::Text(".".into())
             ]
+        );
+    }
+
+    #[test]
+    fn a_symbol_given_a_number_is_mathematics() {
+        assert_eq!(
+            pieces("At t = 3.000000: x = 0.030643, θ̇ = −9.600807. Relative error"),
+            vec![
+                Piece::Text("At ".into()),
+                Piece::Math(math("t = 3.000000")),
+                Piece::Text(": ".into()),
+                Piece::Math(math("x = 0.030643")),
+                Piece::Text(", ".into()),
+                Piece::Math(math(r"\dot{\theta} = -9.600807")),
+                Piece::Text(". Relative error".into())
+            ]
+        );
+        assert_eq!(
+            pieces("a point A = the hinge"),
+            vec![Piece::Text("a point A = the hinge".into())]
         );
     }
 
