@@ -110,7 +110,7 @@ impl Deriver {
 
     fn atom_derivative(&mut self, a: AtomId) -> Rf {
         let info = atom_info(a);
-        let r = match info.kind {
+        match info.kind {
             AtomKind::Sin { angle, cos } => Rf::atom(cos).mul(&self.expr(angle)),
             AtomKind::Cos { angle, sin } => Rf::atom(sin).neg().mul(&self.expr(angle)),
             AtomKind::Root { base, q } => {
@@ -126,8 +126,7 @@ impl Deriver {
                 }
             }
             AtomKind::Plain => self.plain(info.expr),
-        };
-        r
+        }
     }
 
     fn plain(&mut self, e: Expr) -> Rf {
