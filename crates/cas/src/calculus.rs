@@ -6,12 +6,19 @@
 //! time: `d/dt q = q̇`, `d/dt q̇ = q̈`, while for partial derivatives `q`, `q̇`, `q̈` are
 //! independent variables, as Lagrange's equations treat them.
 
+use std::sync::{Mutex, OnceLock};
+
 use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
 use crate::expr::{Expr, Func, Node, Symbol, SymbolKind};
+use crate::limits;
 use crate::normal::{cached_rf, from_rf, Normalizer, Rf};
 use crate::number::Number;
-use crate::poly::{atom_info, plain_atom, AtomId, AtomKind, Monomial, Poly};
+use crate::poly::{
+    atom_expr, atom_info, mul_monomials, needs_rewrite, plain_atom, rewrite_term, AtomId, AtomKind,
+    Monomial, Poly,
+};
 
 /// The variable of a derivative was not a symbol.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -65,10 +72,10 @@ impl Deriver {
     fn poly(&mut self, p: &Poly) -> Rf {
         let mut buckets = Buckets::default();
         for (m, c) in &p.terms {
-            for (i, &(a, e)) in m.iter().enumerate() {
+            for (i, &(a, _)) in m.iter().enumerate() {
                 if !self.atom_is_constant(a) {
-                    let (reduced, coefficient) = lowered(m, i, e, c);
-                    buckets.push(a, reduced, coefficient);
+                    // `atom_is_constant` has worked out (and kept) the atom's derivative.
+                    buckets.push(a, m, i, c, &self.atoms[&a]);
                 }
             }
         }
@@ -86,8 +93,24 @@ impl Deriver {
         if let Some(r) = self.atoms.get(&a) {
             return r.clone();
         }
+        let time = matches!(self.wrt, Wrt::Time);
+        if time {
+            if let Some(r) = remembered_rate(a) {
+                self.atoms.insert(a, r.clone());
+                return r;
+            }
+        }
+        let r = self.atom_derivative(a);
+        if time {
+            remember_rate(a, &r);
+        }
+        self.atoms.insert(a, r.clone());
+        r
+    }
+
+    fn atom_derivative(&mut self, a: AtomId) -> Rf {
         let info = atom_info(a);
-        let r = match info.kind {
+        match info.kind {
             AtomKind::Sin { angle, cos } => Rf::atom(cos).mul(&self.expr(angle)),
             AtomKind::Cos { angle, sin } => Rf::atom(sin).neg().mul(&self.expr(angle)),
             AtomKind::Root { base, q } => {
@@ -103,9 +126,7 @@ impl Deriver {
                 }
             }
             AtomKind::Plain => self.plain(info.expr),
-        };
-        self.atoms.insert(a, r.clone());
-        r
+        }
     }
 
     fn plain(&mut self, e: Expr) -> Rf {
@@ -174,6 +195,36 @@ impl Deriver {
     }
 }
 
+/// The time derivatives of atoms, for every derivation in the process: `d/dt` of an atom is a
+/// pure function of it, and a derivation takes the time derivative of many forms over the
+/// same atoms (each velocity component, each `∂L/∂q̇_j`), each of which otherwise worked out
+/// `d/dt sin θ_k` and the rest again.
+fn rate_memo() -> &'static Mutex<FxHashMap<AtomId, Rf>> {
+    static MEMO: OnceLock<Mutex<FxHashMap<AtomId, Rf>>> = OnceLock::new();
+    MEMO.get_or_init(|| Mutex::new(FxHashMap::default()))
+}
+
+fn remembered_rate(a: AtomId) -> Option<Rf> {
+    rate_memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .get(&a)
+        .cloned()
+}
+
+/// Remembers `d/dt a`, unless a work limit was hit while it was worked out (then the result
+/// may be a placeholder, which a later call with larger limits must not find).
+fn remember_rate(a: AtomId, rate: &Rf) {
+    if limits::exceeded() {
+        return;
+    }
+    rate_memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .entry(a)
+        .or_insert_with(|| rate.clone());
+}
+
 /// The monomial `m` with its `i`-th factor `a^e` lowered to `a^(e−1)`, and `e·c`: the
 /// term's partial derivative with respect to the atom `a`, before `da`.
 fn lowered(m: &Monomial, i: usize, e: u32, c: &Number) -> (Monomial, Number) {
@@ -186,37 +237,64 @@ fn lowered(m: &Monomial, i: usize, e: u32, c: &Number) -> (Monomial, Number) {
     (reduced, c.mul(&Number::int(i64::from(e))))
 }
 
-/// The terms of `∂P/∂a` for each atom `a` of a polynomial `P`, in the order the atoms are
-/// first met.
+/// The terms of `∂P/∂a · da` for each atom `a` of a polynomial `P`, in the order the atoms are
+/// first met. When `da` is one term (`d sin θ = cos θ θ̇`, `d θ̇ = θ̈`, `∂θ/∂θ = 1`: nearly
+/// always) each term's product is formed as the term is read; otherwise the terms of `∂P/∂a`
+/// wait for a full product in [`Buckets::assemble`].
 #[derive(Default)]
 struct Buckets {
     terms: FxHashMap<AtomId, Vec<(Monomial, Number)>>,
-    order: Vec<AtomId>,
+    /// The atoms, and whether their terms are multiplied by `da` already.
+    order: Vec<(AtomId, bool)>,
+    /// Products a rewriting rule applies to (`sin θ · d cos θ = −sin² θ θ̇`).
+    rewrites: Vec<(Monomial, Number)>,
 }
 
 impl Buckets {
-    fn push(&mut self, a: AtomId, reduced: Monomial, coefficient: Number) {
+    /// Adds the derivative of the term `c m` with respect to its `i`-th factor, the atom `a`
+    /// whose derivative is `da`.
+    fn push(&mut self, a: AtomId, m: &Monomial, i: usize, c: &Number, da: &Rf) {
+        let single = one_term(da);
         let order = &mut self.order;
-        self.terms
-            .entry(a)
-            .or_insert_with(|| {
-                order.push(a);
-                Vec::new()
-            })
-            .push((reduced, coefficient));
+        let bucket = self.terms.entry(a).or_insert_with(|| {
+            order.push((a, single.is_some()));
+            Vec::new()
+        });
+        let (reduced, coefficient) = lowered(m, i, m[i].1, c);
+        let Some((md, cd)) = single else {
+            bucket.push((reduced, coefficient));
+            return;
+        };
+        let product = mul_monomials(&reduced, md);
+        let coefficient = coefficient.mul(cd);
+        if product.iter().any(|&(x, k)| needs_rewrite(x, k)) {
+            self.rewrites.push((product, coefficient));
+        } else {
+            bucket.push((product, coefficient));
+        }
     }
 
     /// `Σ_a ∂P/∂a · da`: polynomial parts are gathered and sort-merged once (adding them one
     /// by one would copy the growing sum for every atom); fractions are added after.
     fn assemble(mut self, mut derivative: impl FnMut(AtomId) -> Rf) -> Rf {
-        let mut terms = Vec::new();
+        // Most atoms' derivatives are one term (`d sin θ = cos θ θ̇`), so the parts' sizes
+        // are about the result's: reserved once rather than grown by copying.
+        let size: usize = self.terms.values().map(Vec::len).sum();
+        let mut terms = Vec::with_capacity(size + self.rewrites.len());
         let mut fractions = Rf::zero();
-        for a in self.order {
+        for (a, multiplied) in self.order {
             // Removing one factor `a` from distinct monomials leaves distinct monomials, so the
-            // bucket is a valid (unsorted) polynomial; the final merge sorts.
-            let partial = Poly {
-                terms: self.terms.remove(&a).unwrap_or_default(),
-            };
+            // bucket is a valid polynomial, and multiplying by one monomial keeps it one; each
+            // bucket is a sorted run, which the final merge sorts with the others.
+            let part = self.terms.remove(&a).unwrap_or_default();
+            if multiplied {
+                if !limits::spend(part.len() as u64) {
+                    return Rf::zero();
+                }
+                terms.extend(part);
+                continue;
+            }
+            let partial = Poly { terms: part };
             let da = derivative(a);
             if da.den.is_one() {
                 terms.extend(partial.mul(&da.num).terms);
@@ -224,7 +302,18 @@ impl Buckets {
                 fractions = fractions.add(&Rf::from_poly(Poly::from_terms(partial.terms)).mul(&da));
             }
         }
+        for (m, c) in self.rewrites {
+            terms.extend(rewrite_term(m, c).terms);
+        }
         Rf::from_poly(Poly::from_terms(terms)).add(&fractions)
+    }
+}
+
+/// The one term `c m` of a polynomial `da`, if that is what it is.
+fn one_term(da: &Rf) -> Option<(&Monomial, &Number)> {
+    match da.num.terms.as_slice() {
+        [(m, c)] if da.den.is_one() => Some((m, c)),
+        _ => None,
     }
 }
 
@@ -244,9 +333,15 @@ pub(crate) fn gradient_rf(r: &Rf, vars: &[Symbol]) -> Vec<Rf> {
     let mut depends: FxHashMap<AtomId, Vec<usize>> = FxHashMap::default();
     let mut buckets: Vec<Buckets> = vars.iter().map(|_| Buckets::default()).collect();
     for (m, c) in &r.num.terms {
-        for (i, &(a, e)) in m.iter().enumerate() {
+        for (i, &(a, _)) in m.iter().enumerate() {
             let on = depends.entry(a).or_insert_with(|| {
-                let varying = |(k, d): (usize, &mut Deriver)| (!d.atom_is_constant(a)).then_some(k);
+                // Only a variable the atom mentions can have a non-zero derivative; asking
+                // every variable's deriver about every atom made the gradient of an n-link
+                // Lagrangian compute O(n²) atom derivatives, nearly all of them zero.
+                let mentioned = symbols_in(atom_expr(a));
+                let varying = |(k, d): (usize, &mut Deriver)| {
+                    (mentioned.contains(&vars[k]) && !d.atom_is_constant(a)).then_some(k)
+                };
                 derivers
                     .iter_mut()
                     .enumerate()
@@ -256,15 +351,30 @@ pub(crate) fn gradient_rf(r: &Rf, vars: &[Symbol]) -> Vec<Rf> {
             if on.is_empty() {
                 continue;
             }
-            let (reduced, coefficient) = lowered(m, i, e, c);
             for &k in on.iter() {
-                buckets[k].push(a, reduced.clone(), coefficient.clone());
+                // `on` holds the variables whose derivers worked out `a`'s derivative.
+                buckets[k].push(a, m, i, c, &derivers[k].atoms[&a]);
             }
         }
     }
     let derivers = derivers.iter_mut();
     let assemble = |(b, d): (Buckets, &mut Deriver)| b.assemble(|a| d.atom(a));
     buckets.into_iter().zip(derivers).map(assemble).collect()
+}
+
+/// The symbols that occur in `e` (each once).
+fn symbols_in(e: Expr) -> SmallVec<[Symbol; 4]> {
+    let mut found: SmallVec<[Symbol; 4]> = SmallVec::new();
+    let mut stack: SmallVec<[Expr; 8]> = SmallVec::new();
+    stack.push(e);
+    while let Some(x) = stack.pop() {
+        match x.as_symbol() {
+            Some(s) if !found.contains(&s) => found.push(s),
+            Some(_) => {}
+            None => stack.extend_from_slice(x.children()),
+        }
+    }
+    found
 }
 
 /// `∂r/∂var` of a working form.

@@ -51,6 +51,13 @@ impl NormalForm {
         NormalForm::from_rf(self.0.add(&other.0))
     }
 
+    /// `Σ forms`, equal to adding them one by one, in time linear in the terms (up to the
+    /// sort): adding a long list one at a time copies the growing sum for every part.
+    #[must_use]
+    pub fn sum<'a>(forms: impl IntoIterator<Item = &'a NormalForm>) -> NormalForm {
+        NormalForm::from_rf(Rf::sum(forms.into_iter().map(|f| &*f.0)))
+    }
+
     /// `self − other`.
     #[must_use]
     pub fn sub(&self, other: &NormalForm) -> NormalForm {
@@ -147,6 +154,20 @@ mod tests {
             assert!(f.sub(&f).is_zero());
             assert!(!f.is_zero());
         }
+        // A sum in one merge is the sum added term by term, fractions and all.
+        let parts = [
+            big.normal_form(),
+            small.normal_form(),
+            (Expr::one() / (l + th.cos())).normal_form(),
+            big.normal_form().neg(),
+            (thd / l).normal_form(),
+        ];
+        let folded = parts
+            .iter()
+            .fold(NormalForm::zero(), |s, p| s.add(p))
+            .to_expr();
+        assert_eq!(NormalForm::sum(&parts).to_expr(), folded);
+        assert!(NormalForm::sum(&[]).is_zero());
         let dd = [Expr::rate("form_theta", 2), Expr::rate("form_phi", 2)];
         let eq = big.dt();
         let (row, rest) = eq.normal_form().affine_coefficients(&dd).unwrap();

@@ -171,7 +171,7 @@ pub(crate) fn atom_exprs(ids: &[AtomId]) -> Vec<Expr> {
         .collect()
 }
 
-fn needs_rewrite(id: AtomId, exp: u32) -> bool {
+pub(crate) fn needs_rewrite(id: AtomId, exp: u32) -> bool {
     match id >> KIND_SHIFT {
         KIND_SIN => exp >= 2,
         KIND_ROOT => exp >= 2, // checked against q on the slow path
@@ -210,35 +210,28 @@ impl Ord for Ordered {
 /// Lexicographic comparison of sparse exponent vectors (the smallest atom id is the most
 /// significant variable).
 pub(crate) fn cmp_monomial(a: &Monomial, b: &Monomial) -> Ordering {
-    let mut i = 0;
-    loop {
-        match (a.get(i), b.get(i)) {
-            (None, None) => return Ordering::Equal,
-            (Some(_), None) => return Ordering::Greater,
-            (None, Some(_)) => return Ordering::Less,
-            (Some(&(xa, ea)), Some(&(xb, eb))) => {
-                if xa != xb {
-                    // The one holding the smaller (more significant) atom is larger.
-                    return if (xa & INDEX_MASK) < (xb & INDEX_MASK) {
-                        Ordering::Greater
-                    } else {
-                        Ordering::Less
-                    };
-                }
-                if ea != eb {
-                    return ea.cmp(&eb);
-                }
-            }
+    for (&(xa, ea), &(xb, eb)) in a.iter().zip(b.iter()) {
+        if xa != xb {
+            // The one holding the smaller (more significant) atom is larger.
+            return if (xa & INDEX_MASK) < (xb & INDEX_MASK) {
+                Ordering::Greater
+            } else {
+                Ordering::Less
+            };
         }
-        i += 1;
+        if ea != eb {
+            return ea.cmp(&eb);
+        }
     }
+    // Equal on the shorter one's atoms: the one with more atoms is larger.
+    a.len().cmp(&b.len())
 }
 
 fn key(id: AtomId) -> u32 {
     id & INDEX_MASK
 }
 
-fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
+pub(crate) fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     let mut out = Monomial::with_capacity(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -358,16 +351,20 @@ impl Poly {
 
     /// Sorts and merges an unordered list of terms.
     pub(crate) fn from_terms(mut terms: Vec<(Monomial, Number)>) -> Poly {
+        // A stable sort, so that equal monomials add up in the order they came (float
+        // coefficients), merged in place: the derivation's large sums are mostly sorted runs
+        // (one per atom of a derivative), which the sort merges, and a second vector of the
+        // merged terms copied every term once more.
         terms.sort_by(|a, b| cmp_monomial(&b.0, &a.0));
-        let mut out: Vec<(Monomial, Number)> = Vec::with_capacity(terms.len());
-        for (m, c) in terms {
-            match out.last_mut() {
-                Some((lm, lc)) if *lm == m => *lc = lc.add(&c),
-                _ => out.push((m, c)),
+        terms.dedup_by(|next, kept| {
+            let same = next.0 == kept.0;
+            if same {
+                kept.1 = kept.1.add(&next.1);
             }
-        }
-        out.retain(|(_, c)| !c.is_exact_zero());
-        Poly { terms: out }
+            same
+        });
+        terms.retain(|(_, c)| !c.is_exact_zero());
+        Poly { terms }
     }
 
     pub(crate) fn add(&self, other: &Poly) -> Poly {
@@ -827,7 +824,7 @@ fn accumulate(acc: &mut FxHashMap<Monomial, Number>, m: Monomial, c: Number) {
 }
 
 /// Applies `sin² = 1 − cos²` and `r^q = b` to one term.
-fn rewrite_term(m: Monomial, c: Number) -> Poly {
+pub(crate) fn rewrite_term(m: Monomial, c: Number) -> Poly {
     if let Some(p) = rewrite_sin_squares(&m, &c) {
         return p;
     }

@@ -2,6 +2,7 @@
 //! `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j − Q_j = 0`, gathered as `M(q,t) q̈ = f(q,q̇,t)`.
 
 use std::cell::Cell;
+use std::sync::OnceLock;
 
 use cas::{Expr, Matrix, NormalForm, SolveError, Symbol, WorkLimitError};
 
@@ -112,11 +113,11 @@ pub struct FirstIntegral {
 #[derive(Clone, Debug)]
 pub struct Equations {
     coordinates: Vec<String>,
-    kinetic_energy: Expr,
+    kinetic_energy: LazyTree,
     potential_energy: Expr,
-    lagrangian: Expr,
+    lagrangian: OnceLock<Expr>,
     generalized_forces: Vec<Expr>,
-    lhs: Vec<Expr>,
+    lhs: OnceLock<Vec<Expr>>,
     mass_matrix: Vec<Vec<Expr>>,
     forcing: Vec<Expr>,
     constraint_matrix: Vec<Vec<Expr>>,
@@ -146,7 +147,7 @@ impl Equations {
     /// `K`.
     #[must_use]
     pub fn kinetic_energy(&self) -> Expr {
-        self.kinetic_energy
+        self.kinetic_energy.tree()
     }
     /// `V` (the seed's `U = −V`).
     #[must_use]
@@ -156,7 +157,12 @@ impl Equations {
     /// `L = K − V`.
     #[must_use]
     pub fn lagrangian(&self) -> Expr {
-        self.lagrangian
+        // Rebuilt from `K` and `V` when asked for: keeping `L`'s working form as well as
+        // `K`'s held another O(n³) terms for an n-link chain.
+        *self.lagrangian.get_or_init(|| {
+            let potential = self.potential_energy.normal_form();
+            self.kinetic_energy.form.sub(&potential).to_expr()
+        })
     }
     /// `Q_j`, damping included.
     #[must_use]
@@ -166,7 +172,14 @@ impl Equations {
     /// `d/dt(∂L/∂q̇_j) − ∂L/∂q_j` (normal form), which equals `Q_j` on motions.
     #[must_use]
     pub fn lagrange_lhs(&self) -> &[Expr] {
-        &self.lhs
+        self.lhs.get_or_init(|| {
+            lagrange_lhs(
+                &self.coordinates,
+                &self.mass_matrix,
+                &self.forcing,
+                &self.generalized_forces,
+            )
+        })
     }
     /// `M(q, t)`, rows.
     #[must_use]
@@ -207,6 +220,61 @@ impl Equations {
     #[must_use]
     pub fn first_integrals(&self) -> &[FirstIntegral] {
         &self.first_integrals
+    }
+}
+
+/// `E_j = Σ_k M_jk q̈_k − f_j + Q_j`, rebuilt from the mass matrix and the forcing, which
+/// split `E − Q` exactly (the coefficients of the accelerations and the rest); keeping the
+/// left-hand sides' working forms held as many terms as `M` and `f` together.
+fn lagrange_lhs(
+    coordinates: &[String],
+    mass_matrix: &[Vec<Expr>],
+    forcing: &[Expr],
+    forces: &[Expr],
+) -> Vec<Expr> {
+    let accelerations: Vec<NormalForm> = coordinates
+        .iter()
+        .map(|c| Expr::rate(c, 2).normal_form())
+        .collect();
+    let row = |((masses, f), q): ((&Vec<Expr>, &Expr), &Expr)| {
+        let mut parts: Vec<NormalForm> = masses
+            .iter()
+            .zip(&accelerations)
+            .map(|(m, a)| m.normal_form().mul(a))
+            .collect();
+        parts.push(f.normal_form().neg());
+        parts.push(q.normal_form());
+        NormalForm::sum(&parts).to_expr()
+    };
+    mass_matrix
+        .iter()
+        .zip(forcing)
+        .zip(forces)
+        .map(row)
+        .collect()
+}
+
+/// A result kept in working form whose canonical tree is built when first asked for. The trees
+/// of `K`, `L` and the left-hand sides `E_j` have as many terms as the mass matrix and the
+/// forcing together (O(n³) for an n-link chain), and building a tree costs more than the
+/// derivative it comes from; a simulation or a sweep never reads them.
+#[derive(Clone, Debug)]
+struct LazyTree {
+    form: NormalForm,
+    tree: OnceLock<Expr>,
+}
+
+impl LazyTree {
+    fn new(form: NormalForm) -> LazyTree {
+        LazyTree {
+            form,
+            tree: OnceLock::new(),
+        }
+    }
+
+    /// The canonical tree, the same `Expr` as `form.to_expr()`.
+    fn tree(&self) -> Expr {
+        *self.tree.get_or_init(|| self.form.to_expr())
     }
 }
 
@@ -406,8 +474,8 @@ fn derive_limited(
     let (kinetic, omegas) = kinetic_energy(&system, progress);
     let (potential, forces) = potential_and_forces(&system, &omegas, &vars, progress);
     working_on(progress, None);
-    let lagrangian = (kinetic - potential).normal();
-    let rows = lagrange_rows(lagrangian, &forces, &vars, &coordinates)?;
+    let lagrangian = kinetic.sub(&potential);
+    let rows = lagrange_rows(&lagrangian, &forces, &vars, &coordinates)?;
     let (constraint_matrix, constraint_rhs, constraint_names) =
         constraint_rows(&kept, &vars, progress)?;
     working_on(progress, None);
@@ -430,9 +498,9 @@ fn derive_limited(
     };
     let first_integrals = if first_integrals_wanted {
         let energies = Energies {
-            kinetic,
-            potential,
-            lagrangian: &rows.lagrangian,
+            kinetic: &kinetic,
+            potential: &potential,
+            lagrangian: &lagrangian,
             forces: &forces,
         };
         first_integrals(
@@ -448,11 +516,11 @@ fn derive_limited(
     };
     Ok(Equations {
         coordinates,
-        kinetic_energy: kinetic,
-        potential_energy: potential,
-        lagrangian,
+        kinetic_energy: LazyTree::new(kinetic),
+        potential_energy: potential.to_expr(),
+        lagrangian: OnceLock::new(),
         generalized_forces: forces,
-        lhs: rows.lhs,
+        lhs: OnceLock::new(),
         mass_matrix: rows.mass_matrix,
         forcing: rows.forcing,
         constraint_matrix,
@@ -497,12 +565,16 @@ fn partial(e: Expr, s: Option<Symbol>) -> Expr {
 ///
 /// Each part's term is brought to normal form on its own, so that a work limit is hit (and
 /// reported) at the particle or body whose term outgrows it.
-fn kinetic_energy(system: &System, progress: &Progress) -> (Expr, Vec<Vector>) {
-    let mut kinetic = NormalForm::zero();
+fn kinetic_energy(system: &System, progress: &Progress) -> (NormalForm, Vec<Vector>) {
+    // The parts are summed at the end, in one merge (`NormalForm::sum`).
+    let mut parts: Vec<NormalForm> = Vec::new();
     for p in system.particles() {
         working_on(progress, Some(Part::Particle(p.name.clone())));
-        let v: Vector = p.position.map(|x| x.dt().normal());
-        kinetic = kinetic.add(&(p.mass * dot(&v, &v) / 2).normal_form());
+        // `½ m v·v` on working forms: the velocity's trees were built only to be converted
+        // back, and `v·v` as a tree re-sorted every product before its expansion.
+        let v = p.position.map(|x| x.normal_form().dt());
+        let speed_squared = NormalForm::sum(&v.map(|c| c.mul(&c)));
+        parts.push((p.mass / 2).normal_form().mul(&speed_squared));
     }
     let mut omegas: Vec<Vector> = Vec::with_capacity(system.bodies().len());
     for b in system.bodies() {
@@ -519,10 +591,10 @@ fn kinetic_energy(system: &System, progress: &Progress) -> (Expr, Vec<Vector>) {
                 rot += wb[i] * b.inertia[i][j] * wb[j];
             }
         }
-        kinetic = kinetic.add(&(b.mass * dot(&v, &v) / 2 + rot / 2).normal_form());
+        parts.push((b.mass * dot(&v, &v) / 2 + rot / 2).normal_form());
         omegas.push(*w);
     }
-    (kinetic.to_expr(), omegas)
+    (NormalForm::sum(&parts), omegas)
 }
 
 /// `V` (gravity, springs, potentials) and `Q_j` by virtual work, damping `−∂D/∂q̇_j` included.
@@ -534,7 +606,7 @@ fn potential_and_forces(
     omegas: &[Vector],
     vars: &Variables,
     progress: &Progress,
-) -> (Expr, Vec<Expr>) {
+) -> (NormalForm, Vec<Expr>) {
     let n = vars.qd.len();
     let mut potential = NormalForm::zero();
     let mut dissipation = Expr::zero();
@@ -585,16 +657,17 @@ fn potential_and_forces(
     for (f, s) in forces.iter_mut().zip(&vars.qd_sym) {
         *f = (*f - partial(dissipation, *s)).normal();
     }
-    (potential.to_expr(), forces)
+    (potential, forces)
 }
 
 /// Lagrange's equations row by row, with the working forms the first integrals need.
 struct Rows {
-    lagrangian: NormalForm,
     momenta: Vec<NormalForm>,
-    generalized_gradient: Vec<NormalForm>,
+    /// Whether `∂L/∂q_j` is zero (a cyclic coordinate).
+    cyclic: Vec<bool>,
+    /// `E_j`, kept only where the energy integral's check reads them
+    /// ([`ENERGY_CHECK_MAX_DOF`]).
     lhs_forms: Vec<NormalForm>,
-    lhs: Vec<Expr>,
     mass_matrix: Vec<Vec<Expr>>,
     forcing: Vec<Expr>,
 }
@@ -614,21 +687,24 @@ fn gradient(f: &NormalForm, symbols: &[Option<Symbol>]) -> Vec<NormalForm> {
 /// on working forms: only the results that are kept become trees (building a large tree
 /// costs more than the derivative it comes from).
 fn lagrange_rows(
-    lagrangian: Expr,
+    lagrangian: &NormalForm,
     forces: &[Expr],
     vars: &Variables,
     coordinates: &[String],
 ) -> Result<Rows, MechanicsError> {
     let n = coordinates.len();
-    let lagrangian_form = lagrangian.normal_form();
-    let momenta = gradient(&lagrangian_form, &vars.qd_sym);
-    let generalized_gradient = gradient(&lagrangian_form, &vars.q_sym);
+    let momenta = gradient(lagrangian, &vars.qd_sym);
+    let generalized_gradient = gradient(lagrangian, &vars.q_sym);
+    let cyclic = generalized_gradient
+        .iter()
+        .map(NormalForm::is_zero)
+        .collect();
     let mut lhs_forms = Vec::with_capacity(n);
-    let mut lhs = Vec::with_capacity(n);
     let mut mass_matrix = Vec::with_capacity(n);
     let mut forcing = Vec::with_capacity(n);
-    for j in 0..n {
-        let e = momenta[j].dt().sub(&generalized_gradient[j]);
+    // Each `∂L/∂q_j` is dropped once its row is formed.
+    for (j, partial_q) in generalized_gradient.into_iter().enumerate() {
+        let e = momenta[j].dt().sub(&partial_q);
         let with_forces = if forces[j].is_literal_zero() {
             e.clone()
         } else {
@@ -639,17 +715,16 @@ fn lagrange_rows(
                 coordinate: coordinates[j].clone(),
             });
         };
-        lhs.push(e.to_expr());
-        lhs_forms.push(e);
+        if n <= ENERGY_CHECK_MAX_DOF {
+            lhs_forms.push(e);
+        }
         mass_matrix.push(row.iter().map(NormalForm::to_expr).collect());
         forcing.push(rest.neg().to_expr());
     }
     Ok(Rows {
-        lagrangian: lagrangian_form,
         momenta,
-        generalized_gradient,
+        cyclic,
         lhs_forms,
-        lhs,
         mass_matrix,
         forcing,
     })
@@ -694,8 +769,8 @@ fn explicit_accelerations(mass_matrix: &[Vec<Expr>], forcing: &[Expr]) -> Option
 
 /// The energies and forces the first integrals are built from.
 struct Energies<'a> {
-    kinetic: Expr,
-    potential: Expr,
+    kinetic: &'a NormalForm,
+    potential: &'a NormalForm,
     lagrangian: &'a NormalForm,
     forces: &'a [Expr],
 }
@@ -724,7 +799,7 @@ fn first_integrals(
             .collect();
     for j in 0..n {
         let free_of_constraints = constraint_matrix.iter().all(|row| row[j].is_zero());
-        if !free_of_constraints || !rows.generalized_gradient[j].is_zero() {
+        if !free_of_constraints || !rows.cyclic[j] {
             continue;
         }
         if let Some(conditions) = condition_for(energies.forces[j], &state) {
@@ -751,6 +826,9 @@ fn condition_for(f: Expr, state: &[Symbol]) -> Option<Vec<Expr>> {
         Some(vec![f])
     }
 }
+
+/// Up to this many coordinates the energy integral is confirmed by its time derivative.
+const ENERGY_CHECK_MAX_DOF: usize = 8;
 
 /// The energy (or Jacobi) integral `h = Σ q̇ ∂L/∂q̇ − L`. Constraints kept with multipliers
 /// do no work when they are `A q̇ = 0` with no rate-free term (scleronomic), so energy
@@ -782,14 +860,14 @@ fn energy_integral(
         .flatten()
         .collect();
     let qd = &vars.qd;
-    let h = (0..n).fold(lagrangian.neg(), |h, j| {
-        h.add(&qd[j].normal_form().mul(&rows.momenta[j]))
-    });
+    let mut h_parts = vec![lagrangian.neg()];
+    h_parts.extend((0..n).map(|j| qd[j].normal_form().mul(&rows.momenta[j])));
+    let h = NormalForm::sum(&h_parts);
     // dh/dt = Σ q̇_j (E_j + Q_j) − ∂L/∂t identically; with Q = 0, no explicit time and
     // workless constraints h is conserved. The identity is checked rather than assumed
     // up to 8 degrees of freedom; beyond, the check costs more than the derivation and
     // the theorem (whose premises were checked exactly above) stands alone.
-    let confirmed = n > 8 || {
+    let confirmed = n > ENERGY_CHECK_MAX_DOF || {
         let power = (0..n).fold(NormalForm::zero(), |p, j| {
             p.add(&qd[j].normal_form().mul(&rows.lhs_forms[j]))
         });
@@ -798,10 +876,7 @@ fn energy_integral(
     if !confirmed {
         return None;
     }
-    let energy = energies
-        .kinetic
-        .normal_form()
-        .add(&energies.potential.normal_form());
+    let energy = energies.kinetic.add(energies.potential);
     let kind = if energy.sub(&h).is_zero() {
         "energy"
     } else {

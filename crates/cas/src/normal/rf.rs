@@ -2,6 +2,7 @@
 //! denominator (integer-primitive, positive leading term, rationalised while small).
 
 use crate::expr::Expr;
+use crate::limits;
 use crate::number::Number;
 use crate::poly::{self, gcd, AtomId, AtomKind, Poly};
 
@@ -128,6 +129,28 @@ impl Rf {
             }
         };
         Rf::new(num, den).unwrap_or_else(Rf::zero)
+    }
+
+    /// `Σ parts`, equal to adding them one by one. The polynomial parts are
+    /// gathered and sort-merged once: adding a long list one at a time copies the growing sum
+    /// for every part (a chain's kinetic energy, one particle at a time, was O(n⁴) for the
+    /// O(n³) terms of the n-link). Equal monomials are merged in the order of the parts, so
+    /// even float coefficients add up as the fold would; fractions are added after them.
+    pub(crate) fn sum<'a>(parts: impl IntoIterator<Item = &'a Rf>) -> Rf {
+        let mut terms = Vec::new();
+        let mut fractions: Vec<&Rf> = Vec::new();
+        for r in parts {
+            if r.den.is_one() {
+                terms.extend(r.num.terms.iter().cloned());
+            } else {
+                fractions.push(r);
+            }
+        }
+        if !limits::spend(terms.len() as u64) {
+            return Rf::zero();
+        }
+        let polynomial = Rf::from_poly(Poly::from_terms(terms));
+        fractions.into_iter().fold(polynomial, |s, r| s.add(r))
     }
 
     /// `num / den` known to have no common factor, with `den` plain, exact and not constant:
