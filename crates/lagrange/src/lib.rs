@@ -73,6 +73,7 @@ mod formats;
 mod modes;
 mod output;
 mod projection;
+mod reaction_values;
 mod reactions;
 mod runs;
 mod simulate;
@@ -90,11 +91,15 @@ pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
 pub use output::{FileFormat, Output};
 pub use projection::ProjectedReaction;
+pub use reaction_values::{
+    ReactionProbe, ReactionRoute, ReactionValues, CLOSED_FORM_KKT, CLOSED_FORM_WORK,
+};
 pub use reactions::{NumericMultipliers, Reactions};
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
-    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,
-    Ending, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
+    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv,
+    run_to_csv_with_reactions, samples, Crossing, Ending, Run, SimulationOptions, Streamed,
+    SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
 pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};

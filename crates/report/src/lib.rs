@@ -17,7 +17,7 @@ mod eom_text;
 mod plot;
 
 pub use bifurcation::{plot_bifurcation, BifurcationPoint};
-pub use plot::{plot_run, PlotError};
+pub use plot::{plot_run, plot_run_with_reactions, PlotError};
 
 use cas::print::to_sympy;
 use mechanics::{Equations, System};

@@ -63,6 +63,22 @@ pub fn plot_run(
     columns: &[String],
     rows: &[Vec<f64>],
 ) -> Result<(), PlotError> {
+    plot_run_with_reactions(path, title, columns, &[], rows)
+}
+
+/// [`plot_run`] with a panel of reactions below (none when `reactions` is empty): each row
+/// carries, after the run's `columns`, one value per name of `reactions` (the columns
+/// `lagrange simulate` writes for the model's `reactions`, docs/reactions.md).
+///
+/// # Errors
+/// As [`plot_run`].
+pub fn plot_run_with_reactions(
+    path: &Path,
+    title: &str,
+    columns: &[String],
+    reactions: &[String],
+    rows: &[Vec<f64>],
+) -> Result<(), PlotError> {
     register_font();
     let name = path.display().to_string();
     let drawing = |e: &dyn std::fmt::Display| PlotError::Drawing {
@@ -73,20 +89,37 @@ pub fn plot_run(
         return Err(PlotError::NoData);
     }
     let n = (columns.len() - 3) / 2;
-    let size = (1200, 900);
+    let reactions = Reactions {
+        names: reactions,
+        first: columns.len(),
+    };
+    let size = (
+        1200,
+        if reactions.names.is_empty() {
+            900
+        } else {
+            1260
+        },
+    );
     match path.extension().and_then(|e| e.to_str()) {
         Some(ext) if ext.eq_ignore_ascii_case("svg") => {
             let root = SVGBackend::new(path, size).into_drawing_area();
-            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            draw(&root, title, columns, rows, n, &reactions).map_err(|e| drawing(&e))?;
             root.present().map_err(|e| drawing(&e))
         }
         Some(ext) if ext.eq_ignore_ascii_case("png") => {
             let root = BitMapBackend::new(path, size).into_drawing_area();
-            draw(&root, title, columns, rows, n).map_err(|e| drawing(&e))?;
+            draw(&root, title, columns, rows, n, &reactions).map_err(|e| drawing(&e))?;
             root.present().map_err(|e| drawing(&e))
         }
         _ => Err(PlotError::Format { path: name }),
     }
+}
+
+/// The reaction columns of the rows: their names, and where the first one is in a row.
+struct Reactions<'a> {
+    names: &'a [String],
+    first: usize,
 }
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
@@ -97,9 +130,17 @@ fn draw<DB: DrawingBackend>(
     columns: &[String],
     rows: &[Vec<f64>],
     n: usize,
+    reactions: &Reactions<'_>,
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let root = root.titled(title, (FAMILY, 26))?;
+    let root = if reactions.names.is_empty() {
+        root
+    } else {
+        let (upper, lower) = root.split_vertically(840);
+        draw_reactions(&lower, rows, reactions)?;
+        upper
+    };
     let (top, bottom) = root.split_vertically(480);
     let (phase, energy_panel) = bottom.split_horizontally(600);
     draw_histories(&top, columns, rows, n)?;
@@ -315,6 +356,60 @@ fn draw_energy<DB: DrawingBackend>(
             .background_style(WHITE.mix(0.85))
             .draw()?;
     }
+    Ok(())
+}
+
+/// The reactions against time (evaluated numerically at each row's state), one line each.
+fn draw_reactions<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    rows: &[Vec<f64>],
+    reactions: &Reactions<'_>,
+) -> DrawResult<DB> {
+    let t_range = time_range(rows);
+    let lines: Vec<Vec<(f64, f64)>> = (0..reactions.names.len())
+        .map(|k| {
+            rows.iter()
+                .filter_map(|r| Some((r[0], *r.get(reactions.first + k)?)))
+                .filter(|(_, y)| y.is_finite())
+                .collect()
+        })
+        .collect();
+    let (lo, hi) = bounds(lines.iter().flatten().map(|p| p.1));
+    let mut chart = ChartBuilder::on(panel)
+        .margin(12)
+        .caption("reactions (inertial components, multipliers)", (FAMILY, 20))
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    let (t_span, y_span) = (t_range.1 - t_range.0, hi - lo);
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc("N, N·m, or λ")
+        .x_label_formatter(&|v| tick(*v, t_span))
+        .y_label_formatter(&|v| tick(*v, y_span))
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    for (k, points) in lines.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(1),
+            ))?
+            .label(reactions.names[k].clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font((FAMILY, 15))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()?;
     Ok(())
 }
 
