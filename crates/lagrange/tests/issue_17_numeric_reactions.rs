@@ -267,3 +267,152 @@ fn multipliers_and_driving_forces_give_the_closed_forms_numbers() {
     numbers_match_the_closed_form("bead-on-rotating-hoop.lag");
     numbers_match_the_closed_form("seed/7.3-gears-pendulum.lag");
 }
+
+#[test]
+fn the_size_limit_chooses_numbers_for_large_closed_forms_only() {
+    // Large: the double pendulum's two hinges (issue 20: 65 % of its solve), the rolling
+    // cone's contact (88 %), the four-bar's loop (refused in closed form).
+    for name in [
+        "double-pendulum.lag",
+        "seed/7.2-rolling-cone.lag",
+        "four-bar.lag",
+    ] {
+        let analysis = example(name);
+        let reactions = analysis.reactions().unwrap().unwrap();
+        assert!(reactions.reactions.is_empty(), "{name}");
+        let start = reactions.numeric.as_ref().expect(name);
+        assert!(start.values.iter().all(|(_, v)| v.is_finite()), "{name}");
+        assert_eq!(analysis.reaction_derivations(), 0, "{name}");
+        let text = reactions.to_text();
+        assert!(text.contains("evaluated numerically"), "{name}: {text}");
+        let json = reactions.to_json();
+        assert!(json["numeric"]["values"].is_object(), "{name}: {json}");
+    }
+    // Small: a course's pendulum, a contact, an Atwood machine (constant constraint rows).
+    for name in [
+        "simple-pendulum.lag",
+        "particle-on-sphere.lag",
+        "atwood-machine.lag",
+    ] {
+        let analysis = example(name);
+        let reactions = analysis.reactions().unwrap().unwrap();
+        assert!(reactions.numeric.is_none(), "{name}");
+        assert!(!reactions.reactions.is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn the_four_bar_s_numeric_reactions_are_its_multipliers() {
+    let four_bar = example("four-bar.lag");
+    let numeric = four_bar.multipliers_at_start().unwrap();
+    let reactions = four_bar.reactions().unwrap().unwrap();
+    let values = &reactions.numeric.as_ref().unwrap().values;
+    let names: Vec<&str> = values.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["lambda_loop_x", "lambda_loop_y"]);
+    for ((_, a), (_, b)) in values.iter().zip(&numeric.multipliers) {
+        assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{a} against {b}");
+    }
+}
+
+#[test]
+fn a_run_writes_each_reaction_component_as_a_column_by_name() {
+    let dir = std::env::temp_dir().join(format!("lagrange-i17r-csv-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let pendulum = example("double-pendulum.lag");
+    let options = SimulationOptions {
+        t_end: Some(0.5),
+        output_step: Some(0.1),
+        ..SimulationOptions::default()
+    };
+    let files = lagrange::RunFiles {
+        model: "double-pendulum.lag".into(),
+        plot: Some(dir.join("plot.svg")),
+        ..lagrange::RunFiles::default()
+    };
+    let prepared = pendulum.prepare_run(&options, files).unwrap();
+    assert_eq!(prepared.warning(), None);
+    let mut csv = Vec::new();
+    prepared.run(&mut csv, &mut |_| {}).unwrap();
+    let csv = String::from_utf8(csv).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    assert_eq!(
+        &header[header.len() - 6..],
+        ["top_x", "top_y", "top_z", "middle_x", "middle_y", "middle_z"]
+    );
+    // Each row's reactions are those at its state: the closed form there.
+    let symbolic = analysis("double-pendulum.lag", ReactionRoute::ClosedForm);
+    let closed = symbolic.reactions().unwrap().unwrap();
+    let values = symbolic.values().unwrap();
+    for line in csv.lines().skip(1) {
+        let row: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let env = |s: Symbol| {
+            let k = ["theta1", "theta2"].iter().position(|q| *q == s.name());
+            match (k, s.order()) {
+                (Some(k), 0) => Some(row[1 + k]),
+                (Some(k), 1) => Some(row[3 + k]),
+                _ => values.iter().find(|(v, _)| v == s.name()).map(|(_, x)| *x),
+            }
+        };
+        let middle_y = closed.reactions[1].force.unwrap()[1].eval(&env).unwrap();
+        let got = row[row.len() - 2];
+        assert!(
+            (got - middle_y).abs() <= 1e-9 * (1.0 + middle_y.abs()),
+            "{got} against {middle_y}"
+        );
+    }
+    let svg = std::fs::read_to_string(dir.join("plot.svg")).unwrap();
+    assert!(svg.contains("reactions"), "no reactions panel");
+    assert!(svg.contains("middle_y"), "no legend for middle_y");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_solution_gives_the_numeric_reactions_at_the_start_and_at_each_equilibrium() {
+    let analysis = example("double-pendulum.lag");
+    let text = analysis.solution(None).unwrap().document.to_text();
+    let section = &text[text
+        .find("Constraint reactions")
+        .expect("a reactions section")..];
+    assert!(section.contains("evaluated numerically"), "{section}");
+    assert!(section.contains("middle_y"), "{section}");
+    // The double pendulum has four equilibria; hanging straight down (the first found or
+    // not), the top hinge carries both weights: |top_y| = (m1 + m2) g at one of them.
+    let (names, at) = analysis.reactions_at_equilibria().unwrap();
+    assert_eq!(at.len(), 4);
+    let top_y = names.iter().position(|n| n == "top_y").unwrap();
+    let middle_y = names.iter().position(|n| n == "middle_y").unwrap();
+    for values in at.iter().map(|v| v.as_ref().unwrap()) {
+        assert!(
+            (values[top_y].abs() - 2.0 * 9.81).abs() < 1e-9,
+            "{values:?}"
+        );
+        assert!((values[middle_y].abs() - 9.81).abs() < 1e-9, "{values:?}");
+    }
+    assert!(section.contains("equilibrium 4"), "{section}");
+}
+
+#[test]
+fn a_contact_lost_numerically_stops_the_run_where_the_closed_form_does() {
+    let options = SimulationOptions {
+        t_end: Some(5.0),
+        ..SimulationOptions::default()
+    };
+    let closed = analysis("particle-on-sphere.lag", ReactionRoute::ClosedForm)
+        .simulate(&options)
+        .unwrap();
+    let numeric_analysis = analysis("particle-on-sphere.lag", ReactionRoute::Numeric);
+    let numeric = numeric_analysis.simulate(&options).unwrap();
+    assert_eq!(numeric_analysis.reaction_derivations(), 0);
+    assert!(
+        matches!(&numeric.ending, lagrange::Ending::ContactLost { constraint } if constraint == "normal"),
+        "{:?}",
+        numeric.ending
+    );
+    assert_eq!(numeric.ending, closed.ending);
+    assert!(
+        (numeric.t - closed.t).abs() < 1e-8,
+        "{} against {}",
+        numeric.t,
+        closed.t
+    );
+}
