@@ -300,7 +300,7 @@ impl Analysis {
     pub(crate) fn numeric_reactions_section(&self, start: &ReactionValues) -> Section {
         let mut section = Section::new("Constraint reactions", 2);
         section.paragraph(format!(
-            "The {} Column names: docs/reactions.md.",
+            "The {}. The columns are named as in docs/reactions.md; forces in inertial components.",
             crate::reactions::NUMERIC_SENTENCE.trim_start_matches("the ")
         ));
         let mut header = vec!["reaction".to_string(), format!("at t = {}", start.t)];
