@@ -92,7 +92,7 @@ pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Wr
 pub use output::{FileFormat, Output};
 pub use projection::ProjectedReaction;
 pub use reaction_values::{
-    ReactionProbe, ReactionRoute, ReactionValues, CLOSED_FORM_KKT, CLOSED_FORM_WORK,
+    AtEquilibria, ReactionProbe, ReactionRoute, ReactionValues, CLOSED_FORM_KKT, CLOSED_FORM_WORK,
 };
 pub use reactions::{NumericMultipliers, Reactions};
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};

@@ -46,6 +46,10 @@ pub const CLOSED_FORM_WORK: usize = 4_000;
 /// four-bar's is refused as too large.
 pub const CLOSED_FORM_KKT: usize = 4;
 
+/// The columns' names, and at each equilibrium every column's value (`None` for an
+/// equilibrium whose coordinates are not the equations' own).
+pub type AtEquilibria = (Vec<String>, Vec<Option<Vec<f64>>>);
+
 /// The reactions at one state, evaluated numerically.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReactionValues {
@@ -268,7 +272,7 @@ impl Analysis {
     ///
     /// # Errors
     /// As [`Analysis::equilibria`], [`Analysis::reactions_at_start`].
-    pub fn reactions_at_equilibria(&self) -> Result<(Vec<String>, Vec<Option<Vec<f64>>>), Error> {
+    pub fn reactions_at_equilibria(&self) -> Result<AtEquilibria, Error> {
         let Some(probe) = self.reaction_probe()? else {
             return Ok((Vec::new(), Vec::new()));
         };
