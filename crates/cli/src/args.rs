@@ -55,6 +55,10 @@ pub enum Command {
         /// Output: text for people, or JSON (schema in docs/json.md).
         #[arg(long, value_enum, default_value_t = ResultFormat::Text)]
         format: ResultFormat,
+        /// Derive the closed form even where it is large (by default, large reactions are
+        /// evaluated numerically at the initial state: docs/reactions.md).
+        #[arg(long)]
+        symbolic: bool,
     },
     /// Find all equilibria (rest states with inputs held constant), exactly where possible,
     /// and decide their stability.

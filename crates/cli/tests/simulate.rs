@@ -35,9 +35,10 @@ fn writes_the_csv_with_header_rows_and_summary() {
     ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
     let out = text(&o.stdout);
+    // The run's columns, then the reactions the model names (docs/reactions.md).
     assert_eq!(
         out.lines().next(),
-        Some("t,theta1,theta2,theta1_d,theta2_d,energy_error,constraint_drift")
+        Some("t,theta1,theta2,theta1_d,theta2_d,energy_error,constraint_drift,top_x,top_y,top_z,middle_x,middle_y,middle_z")
     );
     let data = rows(&out);
     let times: Vec<f64> = data.iter().map(|r| r[0]).collect();

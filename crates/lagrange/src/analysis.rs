@@ -44,6 +44,10 @@ pub struct Analysis {
     pub(crate) reaction_derivations: AtomicUsize,
     pub(crate) contacts: OnceLock<Result<Vec<(String, Expr)>, Error>>,
     pub(crate) reactions: OnceLock<Result<Option<crate::Reactions>, Error>>,
+    /// How reactions are computed.
+    pub(crate) reaction_route: crate::ReactionRoute,
+    /// The reactions compiled for numeric evaluation (value names fixed when compiled).
+    pub(crate) evaluator: OnceLock<Result<Option<mechanics::ReactionEvaluator>, Error>>,
     pub(crate) equilibria: OnceLock<Result<crate::Equilibria, Error>>,
 }
 
@@ -55,6 +59,7 @@ impl Clone for Analysis {
         copy.initial.clone_from(&self.initial);
         copy.requests.clone_from(&self.requests);
         copy.work_limits = self.work_limits;
+        copy.reaction_route = self.reaction_route;
         if let Some(Ok(equations)) = self.equations.get() {
             let _ = copy.equations.set(Ok(equations.clone()));
         }
@@ -80,6 +85,8 @@ impl Analysis {
             reaction_derivations: AtomicUsize::new(0),
             contacts: OnceLock::new(),
             reactions: OnceLock::new(),
+            reaction_route: crate::ReactionRoute::default(),
+            evaluator: OnceLock::new(),
             equilibria: OnceLock::new(),
         }
     }
@@ -162,7 +169,7 @@ impl Analysis {
     pub fn with_reactions(mut self, requests: Vec<ReactionRequest>) -> Analysis {
         self.requests = Some(requests);
         self.contacts = OnceLock::new();
-        self.reactions = OnceLock::new();
+        self.forget_reactions();
         self
     }
 
@@ -262,8 +269,15 @@ impl Analysis {
 
     fn forget_numbers(&mut self) {
         self.equilibria = OnceLock::new();
-        // The one-sided scan of reactions reads the initial state.
+        // The one-sided scan of reactions reads the initial state; the compiled reactions
+        // name the values (an input set to a function of time leaves them).
+        self.forget_reactions();
+    }
+
+    /// Drops the reactions computed (closed forms and compiled), to be computed again.
+    pub(crate) fn forget_reactions(&mut self) {
         self.reactions = OnceLock::new();
+        self.evaluator = OnceLock::new();
     }
 
     /// Sets the limits of the symbolic work of this analysis' derivations (the default:
@@ -277,7 +291,7 @@ impl Analysis {
             self.equations = OnceLock::new();
         }
         if matches!(self.reactions.get(), Some(Err(e)) if e.work_limit().is_some()) {
-            self.reactions = OnceLock::new();
+            self.forget_reactions();
         }
         if matches!(self.equilibria.get(), Some(Err(e)) if e.work_limit().is_some()) {
             self.equilibria = OnceLock::new();

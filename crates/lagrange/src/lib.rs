@@ -77,6 +77,7 @@ mod output;
 mod plot_extras;
 mod projection;
 mod question;
+mod reaction_values;
 mod reactions;
 mod runs;
 mod simulate;
@@ -98,11 +99,15 @@ pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Wr
 pub use output::{FileFormat, Output, SolutionOutput};
 pub use projection::ProjectedReaction;
 pub use question::{Answer, EquilibriumQuestion, Misuse, QuestionError, QuestionPart};
+pub use reaction_values::{
+    AtEquilibria, ReactionProbe, ReactionRoute, ReactionValues, CLOSED_FORM_KKT, CLOSED_FORM_WORK,
+};
 pub use reactions::{NumericMultipliers, Reactions};
 pub use runs::{correction_warning, duration, SweepRequest, SweepTable};
 pub use simulate::{
-    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv, samples, Crossing,
-    Ending, Remedy, Run, SimulationOptions, Streamed, SweepRun, Tally, DEFAULT_MAX_BYTES,
+    direction, failure_time, grid, plan, run_kept, run_sampled, run_to_csv,
+    run_to_csv_with_reactions, samples, Crossing, Ending, Remedy, Run, SimulationOptions, Streamed,
+    SweepRun, Tally, DEFAULT_MAX_BYTES,
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
 pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};

@@ -30,6 +30,7 @@ impl Analysis {
         let extras = PlotExtras {
             outputs,
             balance: balance.map(|(b, _)| b),
+            reactions: Vec::new(),
         };
         (extras, last)
     }

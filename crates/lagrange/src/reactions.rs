@@ -8,7 +8,7 @@ use cas::Expr;
 use mechanics::{Agreement, Reaction, ReactionRequest};
 use report::UnilateralReport;
 
-use crate::{Analysis, Error};
+use crate::{Analysis, Error, ReactionValues};
 
 /// The reactions a system asks for.
 #[derive(Debug, Clone)]
@@ -19,6 +19,9 @@ pub struct Reactions {
     pub reactions: Vec<Reaction>,
     /// For each reaction, its one-sided analysis when it pushes or pulls only.
     pub unilateral: Vec<Option<UnilateralReport>>,
+    /// When the reactions are evaluated numerically instead ([`crate::ReactionRoute`]; then
+    /// `reactions` is empty): their values at the run's initial state.
+    pub numeric: Option<ReactionValues>,
 }
 
 impl Reactions {
@@ -34,6 +37,9 @@ impl Reactions {
     /// one-sided one where it holds.
     #[must_use]
     pub fn to_text(&self) -> String {
+        if let Some(values) = &self.numeric {
+            return format!("{NUMERIC_SENTENCE};\n{}", values.to_text());
+        }
         let texts: Vec<String> = (self.reactions.iter().zip(&self.unilateral))
             .map(|(r, u)| report::reaction_text(r, u.as_ref()))
             .collect();
@@ -43,9 +49,17 @@ impl Reactions {
     /// The reactions as JSON (docs/json.md).
     #[must_use]
     pub fn to_json(&self) -> serde_json::Value {
-        report::reactions_json(&self.coordinates, &self.reactions, &self.unilateral)
+        let mut value =
+            report::reactions_json(&self.coordinates, &self.reactions, &self.unilateral);
+        if let (Some(numeric), Some(object)) = (&self.numeric, value.as_object_mut()) {
+            object.insert("numeric".into(), numeric.to_json());
+        }
+        value
     }
 }
+
+/// What a solution or `lagrange reactions` says when the reactions are evaluated numerically.
+pub(crate) const NUMERIC_SENTENCE: &str = "the reactions are evaluated numerically, state by state (their closed form would be large; the closed-form route derives it)";
 
 /// Whether a request is for a force that can only push or pull.
 fn one_sided(request: &ReactionRequest) -> bool {
@@ -71,6 +85,14 @@ impl Analysis {
             return Ok(None);
         }
         let equations = self.equations()?;
+        if self.numeric_reactions_chosen() {
+            return Ok(Some(Reactions {
+                coordinates: equations.coordinates().to_vec(),
+                reactions: Vec::new(),
+                unilateral: Vec::new(),
+                numeric: Some(self.reactions_at_start()?),
+            }));
+        }
         self.reaction_derivations.fetch_add(1, Ordering::Relaxed);
         let reactions = self
             .within_limits(|| mechanics::reactions_of(self.system(), equations, &requests))
@@ -89,6 +111,7 @@ impl Analysis {
             coordinates: equations.coordinates().to_vec(),
             reactions,
             unilateral,
+            numeric: None,
         }))
     }
 
@@ -107,10 +130,14 @@ impl Analysis {
                         .filter_map(|r| r.along.map(|(value, _)| (r.name.clone(), value)))
                         .collect()
                 };
-                if let Some(Ok(computed)) = self.reactions.get() {
-                    return Ok(computed
-                        .as_ref()
-                        .map_or_else(Vec::new, |c| along(&c.reactions)));
+                // Closed forms already derived serve; numeric values do not (a stop event is
+                // an expression of the state).
+                match self.reactions.get() {
+                    Some(Ok(None)) => return Ok(Vec::new()),
+                    Some(Ok(Some(computed))) if computed.numeric.is_none() => {
+                        return Ok(along(&computed.reactions));
+                    }
+                    _ => {}
                 }
                 let requests: Vec<ReactionRequest> =
                     self.requests()?.into_iter().filter(one_sided).collect();

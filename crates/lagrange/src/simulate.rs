@@ -11,7 +11,7 @@ use serde_json::{json, Value};
 use simulation::{Limit, MethodName, Settings, Setup, Simulation, SimulationError, StopEvent};
 
 use crate::assign::{AssignmentError, Range};
-use crate::{Analysis, Error};
+use crate::{Analysis, Error, ReactionProbe};
 
 /// What the user asks of a run; `None` takes the model's `simulate` statement, then the
 /// default (dopri5, rtol 1e-8, atol 1e-10, from 0, a row every step).
@@ -102,7 +102,10 @@ impl Ending {
     pub fn of(simulation: &Simulation, outcome: &Outcome) -> Ending {
         match outcome.stop {
             StopReason::Event { index, .. } => match simulation.stop_event(index) {
-                Some(StopEvent::ContactLost { constraint, .. }) => Ending::ContactLost {
+                Some(
+                    StopEvent::ContactLost { constraint, .. }
+                    | StopEvent::NumericContactLost { constraint },
+                ) => Ending::ContactLost {
                     constraint: constraint.clone(),
                 },
                 Some(StopEvent::Condition(text)) => Ending::Condition { text: text.clone() },
@@ -481,13 +484,19 @@ impl Analysis {
             .iter()
             .map(|text| StopEvent::Condition(text.clone()))
             .collect();
+        let mut numeric_contacts = None;
         if !options.through_contact_loss {
-            stop_events.extend(self.one_sided_contacts()?.iter().map(|(name, value)| {
-                StopEvent::ContactLost {
-                    constraint: name.clone(),
-                    value: *value,
-                }
-            }));
+            // Numerically where the reactions are evaluated so (not with `gauss`, whose
+            // state holds momenta), else their closed forms.
+            numeric_contacts = self.numeric_contacts(settings.method)?;
+            if numeric_contacts.is_none() {
+                stop_events.extend(self.one_sided_contacts()?.iter().map(|(name, value)| {
+                    StopEvent::ContactLost {
+                        constraint: name.clone(),
+                        value: *value,
+                    }
+                }));
+            }
         }
         let setup = Setup {
             values: self.values()?,
@@ -495,6 +504,7 @@ impl Analysis {
             initial: self.initial_state()?,
             stop_events,
             record_when: options.record_when.clone(),
+            numeric_contacts,
         };
         Simulation::prepare(self.system(), equations, &settings, setup)
             .map_err(|e| self.locate_setting(e, options))
@@ -612,7 +622,31 @@ pub fn run_to_csv(
     max_bytes: u64,
     on_time: &mut dyn FnMut(f64),
 ) -> std::io::Result<Streamed> {
-    let header = format!("{}\n", simulation.columns().join(","));
+    run_to_csv_with_reactions(simulation, None, out, keep, max_bytes, on_time)
+}
+
+/// [`run_to_csv`], each row followed by the reactions of `reactions` at its state (columns
+/// named by [`ReactionProbe::columns`], evaluated numerically; the rows kept carry them too).
+///
+/// # Errors
+/// As [`run_to_csv`].
+pub fn run_to_csv_with_reactions(
+    simulation: &mut Simulation,
+    reactions: Option<&ReactionProbe>,
+    out: &mut dyn std::io::Write,
+    keep: bool,
+    max_bytes: u64,
+    on_time: &mut dyn FnMut(f64),
+) -> std::io::Result<Streamed> {
+    let mut columns = simulation.columns();
+    if let Some(probe) = reactions {
+        columns.extend(probe.columns());
+    }
+    // The reactions are evaluated on a copy: the run holds the simulation.
+    let mut probing = reactions.map(|probe| (probe, simulation.clone()));
+    let n = (simulation.columns().len() - 3) / 2;
+    let mut extended = Vec::new();
+    let header = format!("{}\n", columns.join(","));
     out.write_all(header.as_bytes())?;
     let mut write_error = None;
     let mut kept = Vec::new();
@@ -624,14 +658,23 @@ pub fn run_to_csv(
     let started = std::time::Instant::now();
     let outcome = simulation.run_until(
         &mut |row| {
-            let line = crate::csv::row(row);
+            let full_row = match &mut probing {
+                Some((probe, copy)) => {
+                    extended.clear();
+                    extended.extend_from_slice(row);
+                    extended.extend(probe.at(copy, row[0], &row[1..=2 * n]));
+                    &extended[..]
+                }
+                None => row,
+            };
+            let line = crate::csv::row(full_row);
             if write_error.is_none() {
                 write_error = out.write_all(line.as_bytes()).err();
             }
             bytes += line.len() as u64;
             longest = longest.max(line.len() as u64);
             if keep {
-                kept.push(row.to_vec());
+                kept.push(full_row.to_vec());
             }
             tally.row(row);
             on_time(row[0]);

@@ -10,7 +10,7 @@ use report::document::{Block, Document, Notation, Section};
 use report::solution_simulation::{simulation_section, RunEnd, RunReport};
 
 use crate::simulate::{run_sampled, Ending, SimulationOptions};
-use crate::{Analysis, Error};
+use crate::{Analysis, Error, Reactions};
 
 /// About how many rows of its simulation a solution keeps for the plot (at most twice as
 /// many, evenly spread, and the last).
@@ -106,6 +106,12 @@ impl Analysis {
         }
         let mut disagree = false;
         match reactions {
+            Ok(Some(Reactions {
+                numeric: Some(start),
+                ..
+            })) => document
+                .sections
+                .push(self.numeric_reactions_section(start)),
             Ok(Some(reactions)) => {
                 disagree = reactions.disagree();
                 let mut section = report::solution_reactions::reactions_section(
@@ -292,8 +298,14 @@ impl Analysis {
         let (extras, balance) = self.plot_extras(&run);
         let figure = figures.map(|f| {
             let file = format!("{}-motion.{}", f.stem, f.extension);
+            let (reactions, rows) = self.rows_with_reactions(&simulation, &run.rows);
+            let extras = report::PlotExtras {
+                reactions,
+                ..extras.clone()
+            };
             let path = f.directory.join(&file);
-            report::plot_run_with(&path, &f.stem, &run.columns, &run.rows, &extras)
+            let rows = rows.as_deref().unwrap_or(&run.rows);
+            report::plot_run_with(&path, &f.stem, &run.columns, rows, &extras)
                 .map(|()| file)
                 .map_err(|e| e.to_string())
         });
@@ -312,6 +324,31 @@ impl Analysis {
             outputs: extras.outputs.iter().map(|o| o.label.clone()).collect(),
         };
         simulation_section(Ok(&report))
+    }
+
+    /// The reactions panel's columns and the rows with the reactions appended (evaluated
+    /// numerically at each row's state); no columns and no rows when the model asks for no
+    /// reaction or they cannot be evaluated (the plot then has no panel).
+    fn rows_with_reactions(
+        &self,
+        simulation: &simulation::Simulation,
+        rows: &[Vec<f64>],
+    ) -> (Vec<String>, Option<Vec<Vec<f64>>>) {
+        let Ok(Some(probe)) = self.reaction_probe() else {
+            return (Vec::new(), None);
+        };
+        let mut copy = simulation.clone();
+        let n = (simulation.columns().len() - 3) / 2;
+        let extended = rows
+            .iter()
+            .map(|row| {
+                let mut row = row.clone();
+                let values = probe.at(&mut copy, row[0], &row[1..=2 * n]);
+                row.extend(values);
+                row
+            })
+            .collect();
+        (probe.columns(), Some(extended))
     }
 
     /// The report's title: the model's `title`, else the first sentence of its opening

@@ -13,8 +13,8 @@ use simulation::Simulation;
 
 use crate::error::OneRunOnly;
 use crate::{
-    correction_warning, run_to_csv, Analysis, Error, SimulationOptions, Streamed, SweepRequest,
-    SweepTable, DEFAULT_MAX_BYTES,
+    correction_warning, run_to_csv_with_reactions, Analysis, Error, ReactionProbe,
+    SimulationOptions, Streamed, SweepRequest, SweepTable, DEFAULT_MAX_BYTES,
 };
 
 /// What a run writes besides the rows it streams.
@@ -51,6 +51,9 @@ pub struct PreparedRun {
     csv: Option<BufWriter<File>>,
     events: Option<BufWriter<File>>,
     summary: Option<BufWriter<File>>,
+    /// The reactions the model asks for, written beside each row (evaluated numerically);
+    /// the error when they cannot be.
+    reactions: Result<Option<ReactionProbe>, Error>,
 }
 
 /// A run that was written: how it went, in numbers and in words, and the files written.
@@ -88,6 +91,7 @@ impl Analysis {
         let simulation = self.simulation(options)?;
         let open = |path: &Option<PathBuf>| path.as_deref().map(create).transpose();
         Ok(PreparedRun {
+            reactions: self.reaction_probe(),
             csv: open(&files.csv)?,
             events: open(&files.events)?,
             summary: open(&files.summary)?,
@@ -146,7 +150,15 @@ impl PreparedRun {
     /// A warning when the initial state was moved onto the constraints.
     #[must_use]
     pub fn warning(&self) -> Option<String> {
-        correction_warning(&self.simulation)
+        let reactions = self
+            .reactions
+            .as_ref()
+            .err()
+            .map(|e| format!("the reactions are left out of the CSV: {e}"));
+        match (correction_warning(&self.simulation), reactions) {
+            (Some(a), Some(b)) => Some(format!("{a}\nwarning: {b}")),
+            (a, b) => a.or(b),
+        }
     }
 
     /// Runs, streaming the CSV to its file or else to `out`, then writes the crossings, the
@@ -167,9 +179,15 @@ impl PreparedRun {
             Some(file) => file,
             None => out,
         };
-        let streamed = run_to_csv(&mut self.simulation, csv, keep, max_bytes, &mut |t| {
-            on_progress(((t - t0) / (t1 - t0)).clamp(0.0, 1.0));
-        })
+        let reactions = self.reactions.as_ref().ok().and_then(Option::as_ref);
+        let streamed = run_to_csv_with_reactions(
+            &mut self.simulation,
+            reactions,
+            csv,
+            keep,
+            max_bytes,
+            &mut |t| on_progress(((t - t0) / (t1 - t0)).clamp(0.0, 1.0)),
+        )
         .map_err(|e| write_error("the CSV", &e))?;
         let simulation = &self.simulation;
         if let Some(mut file) = self.events.take() {
@@ -185,7 +203,14 @@ impl PreparedRun {
         if let Some(path) = &self.files.plot {
             let stem = self.files.model.file_stem().unwrap_or_default();
             let title = format!("{} — {}", stem.to_string_lossy(), simulation.method());
-            report::plot_run(path, &title, &simulation.columns(), &streamed.kept)?;
+            let columns = reactions.map_or_else(Vec::new, ReactionProbe::columns);
+            report::plot_run_with_reactions(
+                path,
+                &title,
+                &simulation.columns(),
+                &columns,
+                &streamed.kept,
+            )?;
         }
         let recorded = simulation.recorded();
         Ok(WrittenRun {

@@ -55,8 +55,8 @@ pub use kkt::{null_space, KeptRest};
 pub use parameter_signs::Inequality;
 pub use polynomial_rest::RestPolynomial;
 pub use reactions::{
-    reactions, reactions_of, Agreement, Method, Reaction, ReactionError, ReactionRequest, Release,
-    ReleaseKind,
+    reactions, reactions_of, Agreement, Method, NumericGap, Quantity, Reaction, ReactionColumn,
+    ReactionError, ReactionEvaluator, ReactionRequest, ReactionState, Release, ReleaseKind,
 };
 pub use system::{
     rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,

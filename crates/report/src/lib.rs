@@ -18,7 +18,9 @@ mod eom_text;
 mod plot;
 
 pub use bifurcation::{plot_bifurcation, BifurcationPoint};
-pub use plot::{plot_run, plot_run_with, OutputSeries, PlotError, PlotExtras};
+pub use plot::{
+    plot_run, plot_run_with, plot_run_with_reactions, OutputSeries, PlotError, PlotExtras,
+};
 
 use cas::print::to_sympy;
 use mechanics::{Equations, System};

@@ -73,6 +73,28 @@ pub struct PlotExtras {
     /// `(E − E₀ − W)/|E₀|` (`W` their work since the start; `|E₀|` taken as 1 when `E₀` is
     /// 0), plotted instead of the relative energy error, which is then the work done.
     pub balance: Option<Vec<f64>>,
+    /// Reactions, one per name, whose values each row carries after the run's columns (the
+    /// columns `lagrange simulate` writes for the model's `reactions`, docs/reactions.md), in
+    /// a panel of their own at the bottom.
+    pub reactions: Vec<String>,
+}
+
+/// [`plot_run`] with a panel of reactions below (none when `reactions` is empty).
+///
+/// # Errors
+/// As [`plot_run`].
+pub fn plot_run_with_reactions(
+    path: &Path,
+    title: &str,
+    columns: &[String],
+    reactions: &[String],
+    rows: &[Vec<f64>],
+) -> Result<(), PlotError> {
+    let extras = PlotExtras {
+        reactions: reactions.to_vec(),
+        ..PlotExtras::default()
+    };
+    plot_run_with(path, title, columns, rows, &extras)
 }
 
 /// Draws the run: `columns` as written by `lagrange simulate` (`t`, the n coordinates, the n
@@ -111,14 +133,21 @@ pub fn plot_run_with(
         return Err(PlotError::NoData);
     }
     let n = (columns.len() - 3) / 2;
+    let reactions = Reactions {
+        names: &extras.reactions,
+        first: columns.len(),
+    };
     let plot = Plot {
         title,
         columns,
         rows,
         n,
         extras,
+        reactions,
     };
-    let size = (1200, if extras.outputs.is_empty() { 900 } else { 1200 });
+    let outputs = if extras.outputs.is_empty() { 0 } else { 300 };
+    let reaction_panel = if extras.reactions.is_empty() { 0 } else { 360 };
+    let size = (1200, 900 + outputs + reaction_panel);
     match path.extension().and_then(|e| e.to_str()) {
         Some(ext) if ext.eq_ignore_ascii_case("svg") => {
             let root = SVGBackend::new(path, size).into_drawing_area();
@@ -134,6 +163,12 @@ pub fn plot_run_with(
     }
 }
 
+/// The reaction columns of the rows: their names, and where the first one is in a row.
+struct Reactions<'a> {
+    names: &'a [String],
+    first: usize,
+}
+
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// What one figure draws.
@@ -143,12 +178,21 @@ struct Plot<'a> {
     rows: &'a [Vec<f64>],
     n: usize,
     extras: &'a PlotExtras,
+    reactions: Reactions<'a>,
 }
 
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot<'_>) -> DrawResult<DB> {
     let (columns, rows, n) = (plot.columns, plot.rows, plot.n);
     root.fill(&WHITE)?;
     let root = root.titled(plot.title, (FAMILY, 26))?;
+    let root = if plot.reactions.names.is_empty() {
+        root
+    } else {
+        let height = root.dim_in_pixel().1;
+        let (upper, lower) = root.split_vertically(height.saturating_sub(360));
+        draw_reactions(&lower, rows, &plot.reactions)?;
+        upper
+    };
     let (top, bottom) = root.split_vertically(480);
     let bottom = if plot.extras.outputs.is_empty() {
         bottom
@@ -457,6 +501,60 @@ fn draw_energy<DB: DrawingBackend>(
             .background_style(WHITE.mix(0.85))
             .draw()?;
     }
+    Ok(())
+}
+
+/// The reactions against time (evaluated numerically at each row's state), one line each.
+fn draw_reactions<DB: DrawingBackend>(
+    panel: &DrawingArea<DB, Shift>,
+    rows: &[Vec<f64>],
+    reactions: &Reactions<'_>,
+) -> DrawResult<DB> {
+    let t_range = time_range(rows);
+    let lines: Vec<Vec<(f64, f64)>> = (0..reactions.names.len())
+        .map(|k| {
+            rows.iter()
+                .filter_map(|r| Some((r[0], *r.get(reactions.first + k)?)))
+                .filter(|(_, y)| y.is_finite())
+                .collect()
+        })
+        .collect();
+    let (lo, hi) = bounds(lines.iter().flatten().map(|p| p.1));
+    let mut chart = ChartBuilder::on(panel)
+        .margin(12)
+        .caption("reactions (inertial components, multipliers)", (FAMILY, 20))
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
+    let (t_span, y_span) = (t_range.1 - t_range.0, hi - lo);
+    chart
+        .configure_mesh()
+        .x_desc("t (s)")
+        .y_desc("N, N·m, or λ")
+        .x_label_formatter(&|v| tick(*v, t_span))
+        .y_label_formatter(&|v| tick(*v, y_span))
+        .label_style((FAMILY, 14))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    for (k, points) in lines.iter().enumerate() {
+        let color = PALETTE[k % PALETTE.len()];
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(1),
+            ))?
+            .label(reactions.names[k].clone())
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
+            });
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font((FAMILY, 15))
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(200, 200, 200))
+        .draw()?;
     Ok(())
 }
 

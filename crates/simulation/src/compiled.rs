@@ -53,6 +53,8 @@ pub(crate) struct Compiled {
     pub(crate) monitor: Evaluator,
     pub(crate) canonical: Option<(Evaluator, Evaluator)>,
     pub(crate) events: Option<Evaluator>,
+    /// One-sided reactions evaluated numerically, stop events after the tape's.
+    pub(crate) contacts: Option<crate::NumericContacts>,
     /// How many of the events (the first ones) stop the run; the others are recorded.
     pub(crate) stopping_events: usize,
     /// The input buffer, with the parameters' values in place.
@@ -119,15 +121,28 @@ impl Compiled {
             monitor,
             canonical,
             events,
+            contacts: None,
             stopping_events,
             inputs: values,
             drift_known,
         })
     }
 
-    /// How many event functions there are (each output of the events tape is one).
+    /// How many event functions there are: each output of the events tape, then each
+    /// one-sided reaction evaluated numerically.
     pub(crate) fn event_count(&self) -> usize {
+        self.tape_event_count() + self.contacts.as_ref().map_or(0, |c| c.columns.len())
+    }
+
+    /// How many event functions the events tape computes.
+    pub(crate) fn tape_event_count(&self) -> usize {
         self.events.as_ref().map_or(0, |e| e.tape.output_count())
+    }
+
+    /// Whether event `index` stops the run: the first `stopping_events` of the tape, and
+    /// every numeric one-sided reaction.
+    pub(crate) fn event_stops(&self, index: usize) -> bool {
+        index < self.stopping_events || index >= self.tape_event_count()
     }
 
     /// Puts `(q, q̇, t)` into the input buffer.

@@ -273,17 +273,54 @@ impl OdeSystem for SecondOrder<'_> {
     }
 
     fn event_stops(&self, index: usize) -> bool {
-        index < self.compiled.stopping_events
+        self.compiled.event_stops(index)
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
         let n = self.compiled.n;
+        let tape = self.compiled.tape_event_count();
         let c = &mut *self.compiled;
         c.inputs[..2 * n].copy_from_slice(y);
         c.inputs[2 * n] = t;
         if let Some(events) = c.events.as_mut() {
             let out = events.eval(&c.inputs);
-            g.copy_from_slice(&out[..g.len()]);
+            g[..tape].copy_from_slice(&out[..tape]);
+        }
+        if tape < g.len() {
+            self.contact_events(t, y, &mut g[tape..]);
+        }
+    }
+}
+
+impl SecondOrder<'_> {
+    /// The one-sided reactions evaluated numerically at `(t, y)` (NaN where the equations
+    /// cannot be solved there).
+    fn contact_events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        let n = self.compiled.n;
+        let mut derivative = vec![0.0; 2 * n];
+        if self.rhs(t, y, &mut derivative).is_err() {
+            g.fill(f64::NAN);
+            return;
+        }
+        let mut lambda = vec![0.0; self.compiled.m];
+        if self.compiled.m > 0 {
+            for (k, &row) in self.selected.iter().enumerate() {
+                lambda[row] = self.vector[n + k];
+            }
+        }
+        let Some(contacts) = self.compiled.contacts.as_ref() else {
+            return;
+        };
+        let values = contacts.evaluator.evaluate(&mechanics::ReactionState {
+            t,
+            positions: &y[..n],
+            rates: &y[n..],
+            accelerations: &derivative[n..],
+            multipliers: &lambda,
+            values: &contacts.values,
+        });
+        for (slot, (_, column)) in g.iter_mut().zip(&contacts.columns) {
+            *slot = values.get(*column).copied().unwrap_or(f64::NAN);
         }
     }
 }
@@ -354,7 +391,7 @@ impl OdeSystem for Canonical<'_> {
     }
 
     fn event_stops(&self, index: usize) -> bool {
-        index < self.compiled.stopping_events
+        self.compiled.event_stops(index)
     }
 
     fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {

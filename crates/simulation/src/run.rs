@@ -3,6 +3,7 @@
 
 use std::fmt;
 use std::ops::ControlFlow;
+use std::sync::Arc;
 
 use cas::ParseContext;
 use mechanics::{Equations, System};
@@ -235,6 +236,34 @@ pub enum StopEvent {
         /// The reaction along its one allowed direction, an expression of `t`, `q`, `q̇`.
         value: cas::Expr,
     },
+    /// A one-sided constraint is lost where its reaction, evaluated numerically
+    /// ([`NumericContacts`]), crosses zero.
+    NumericContactLost {
+        /// The reaction's name in the model.
+        constraint: String,
+    },
+}
+
+/// One-sided reactions evaluated numerically (issue 17): a run stops where one crosses zero,
+/// as at a [`StopEvent::ContactLost`], without its closed form. Not with `gauss` (whose state
+/// holds momenta): there the closed form is the route.
+#[derive(Debug, Clone)]
+pub struct NumericContacts {
+    /// The reactions, compiled.
+    pub evaluator: Arc<mechanics::ReactionEvaluator>,
+    /// The values, in the order the evaluator was compiled with.
+    pub values: Vec<f64>,
+    /// Each one-sided reaction's name and its column among the evaluator's.
+    pub columns: Vec<(String, usize)>,
+}
+
+impl PartialEq for NumericContacts {
+    /// The same compiled reactions (by identity), values and columns.
+    fn eq(&self, other: &NumericContacts) -> bool {
+        Arc::ptr_eq(&self.evaluator, &other.evaluator)
+            && self.values == other.values
+            && self.columns == other.columns
+    }
 }
 
 /// Everything a run needs besides the equations: values, initial state, events.
@@ -253,6 +282,8 @@ pub struct Setup {
     /// `q_d` and the parameters: [`Simulation::run_recording`] reports each with its
     /// direction, time and state.
     pub record_when: Vec<String>,
+    /// One-sided reactions evaluated numerically that stop the run, after `stop_events`.
+    pub numeric_contacts: Option<NumericContacts>,
 }
 
 /// A recorded zero crossing of a `record_when` expression.
@@ -470,7 +501,7 @@ impl Simulation {
         setup: Setup,
     ) -> Result<Simulation, SimulationError> {
         settings.validate()?;
-        if setup.stop_events.is_empty() {
+        if setup.stop_events.is_empty() && setup.numeric_contacts.is_none() {
             settings.check_limits()?;
         }
         let coordinates = equations.coordinates().to_vec();
@@ -497,6 +528,18 @@ impl Simulation {
             settings.method == MethodName::Gauss,
         )
         .map_err(|e| missing_value(e, &coordinates))?;
+        // The momenta of `gauss` give no accelerations to evaluate the reactions with.
+        let mut stop_events = setup.stop_events;
+        if settings.method != MethodName::Gauss {
+            if let Some(contacts) = setup.numeric_contacts {
+                stop_events.extend(contacts.columns.iter().map(|(name, _)| {
+                    StopEvent::NumericContactLost {
+                        constraint: name.clone(),
+                    }
+                }));
+                compiled.contacts = Some(contacts);
+            }
+        }
 
         let t_start = settings.t_start;
         let (initial, correction) = start_on_constraints(&mut compiled, t_start, setup.initial)?;
@@ -520,7 +563,7 @@ impl Simulation {
             initial,
             correction,
             initial_energy,
-            stop_events: setup.stop_events,
+            stop_events,
             record_when: setup.record_when,
             drift: Drift::default(),
         })
@@ -529,7 +572,16 @@ impl Simulation {
     /// The stop event of an [`numeric::StopReason::Event`]'s index.
     #[must_use]
     pub fn stop_event(&self, index: usize) -> Option<&StopEvent> {
-        self.stop_events.get(index)
+        // The tape's stopping events, its recorded ones, then the numeric contacts.
+        let (stopping, tape) = (
+            self.compiled.stopping_events,
+            self.compiled.tape_event_count(),
+        );
+        match index {
+            i if i < stopping => self.stop_events.get(i),
+            i if i >= tape => self.stop_events.get(stopping + (i - tape)),
+            _ => None,
+        }
     }
 
     /// The expressions recorded without stopping, as given.
@@ -828,6 +880,9 @@ fn compile_events(
                     })?
             }
             StopEvent::ContactLost { value, .. } => *value,
+            // Numeric contacts come through `Setup::numeric_contacts`; one given here has no
+            // expression and never fires (a constant keeps the events' indices in order).
+            StopEvent::NumericContactLost { .. } => cas::Expr::one(),
         });
     }
     let stopping_events = events.len();

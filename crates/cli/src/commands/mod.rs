@@ -26,7 +26,11 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
         }
         Command::Check { model } => check::run(&model),
         Command::Eom { input, format } => eom::run(&input.model, format, &input.set),
-        Command::Reactions { input, format } => reactions::run(&input.model, format, &input.set),
+        Command::Reactions {
+            input,
+            format,
+            symbolic,
+        } => reactions::run(&input.model, format, &input.set, symbolic),
         Command::Equilibria { input, options } => equilibria::run(&input, &options, None, None),
         Command::Linearize {
             input,

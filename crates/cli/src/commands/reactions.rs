@@ -8,8 +8,16 @@ use lagrange::{ResultFormat, Written};
 use crate::exit::{print, Exit, Failure};
 
 /// Computes and prints the reactions of a model file.
-pub fn run(path: &Path, format: ResultFormat, set: &[String]) -> Result<Exit, Failure> {
-    let analysis = super::load(path, set)?;
+pub fn run(
+    path: &Path,
+    format: ResultFormat,
+    set: &[String],
+    symbolic: bool,
+) -> Result<Exit, Failure> {
+    let mut analysis = super::load(path, set)?;
+    if symbolic {
+        analysis.set_reaction_route(lagrange::ReactionRoute::ClosedForm);
+    }
     let computed = match analysis.reactions() {
         // Too large for closed form: the multipliers at the initial state, in numbers.
         Err(e) if e.is_too_large_for_closed_form() && format == ResultFormat::Text => {

@@ -370,6 +370,29 @@ impl KaneSystem {
         })
     }
 
+    /// The residuals `E_j − Q_j = (M q̈ − f)_j` of Lagrange's equations of every coordinate
+    /// at `(q, q̇, q̈, t)`, without the constraints' terms: what the rows of a released
+    /// system's displacements read on a given motion (reactions evaluated numerically,
+    /// `reactions::numeric`).
+    pub(crate) fn lagrange_residuals(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        t: f64,
+        values: &[f64],
+    ) -> Vec<f64> {
+        let geo = self.partials(q, qd, t, values);
+        let (jet, _) = self.jet(q, qd, t, values);
+        let damping = self.dissipation_partials(q, qd, t, values);
+        let mass = self.mass_matrix(&geo);
+        let forces = self.forces(&geo, &jet, &damping);
+        mass.iter()
+            .zip(forces)
+            .map(|(row, f)| row.iter().zip(qdd).map(|(m, a)| m * a).sum::<f64>() - f)
+            .collect()
+    }
+
     /// `T` (n×p): the rates per unit of each speed, with no constraint bias.
     fn speed_matrix<T: Scalar>(
         &self,

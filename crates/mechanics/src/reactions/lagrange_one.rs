@@ -12,7 +12,7 @@ use crate::equations::Equations;
 use crate::system::{ConstraintForm, System, Vector};
 
 /// Checks that no constraint of the released system moves with the displacements.
-fn check_disentangled(release: &Release) -> Result<(), ReactionError> {
+pub(super) fn check_disentangled(release: &Release) -> Result<(), ReactionError> {
     let symbols: Vec<Symbol> = release
         .displacements
         .iter()

@@ -21,6 +21,7 @@ mod compare;
 mod lagrange_one;
 mod motion;
 mod newton_euler;
+mod numeric;
 mod request;
 mod result;
 
@@ -28,6 +29,7 @@ use crate::constraint_rank::{constraint_conflict, ConstraintConflict};
 use crate::equations::{derive, Equations, MechanicsError};
 use crate::system::System;
 
+pub use numeric::{NumericGap, Quantity, ReactionColumn, ReactionEvaluator, ReactionState};
 pub use request::{ReactionRequest, Release, ReleaseKind};
 pub use result::{Agreement, Method, Reaction};
 
@@ -67,6 +69,14 @@ pub enum ReactionError {
     /// The symbolic work went past a limit of the symbolic core ([`cas::WorkLimits`]).
     #[error("deriving the reactions: {0}")]
     WorkLimit(cas::WorkLimitError),
+    /// The reaction cannot be evaluated numerically; its closed form is the route.
+    #[error("reaction `{reaction}` cannot be evaluated numerically: {gap}")]
+    NotNumeric {
+        /// The reaction.
+        reaction: String,
+        /// Why.
+        gap: NumericGap,
+    },
     /// A constraint named in a reaction is unknown.
     #[error("no constraint `{0}`")]
     UnknownConstraint(String),
