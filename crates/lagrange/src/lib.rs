@@ -70,6 +70,7 @@ pub mod expression;
 mod figure;
 mod floquet;
 mod formats;
+mod kane_eom;
 mod modes;
 mod output;
 mod projection;
@@ -88,6 +89,7 @@ pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
 pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
+pub use kane_eom::{kane_json, kane_text, KaneEom, Method};
 pub use output::{FileFormat, Output};
 pub use projection::ProjectedReaction;
 pub use reactions::{NumericMultipliers, Reactions};
