@@ -35,11 +35,14 @@ fn the_rolling_disk_reduces_to_three_speeds_equal_to_lagrange_exactly() {
     let (eq, agreement) = symbolic(&a);
     assert_eq!(agreement, Agreement::Exact);
     let names = |idx: &[usize]| -> Vec<String> {
-        idx.iter().map(|k| eq.coordinates[*k].clone()).collect()
+        let mut sorted = idx.to_vec();
+        sorted.sort_unstable();
+        sorted.iter().map(|k| eq.coordinates[*k].clone()).collect()
     };
     // The contact point's coordinates are cyclic: they are the dependent rates.
     assert_eq!(names(&eq.split.dependent), ["x", "y"]);
     assert_eq!(names(&eq.split.independent), ["psi", "theta", "phi"]);
+    assert_eq!(eq.split.independent, [2, 3, 4], "the speeds in the coordinates' order");
     // x' = R φ' cos ψ and y' = R φ' sin ψ (the model's comment), exactly.
     let (r, phi_d, psi) = (
         Expr::symbol("R"),
