@@ -72,3 +72,4 @@ fn check_counts_a_rolling_contacts_independent_rows() {
         assert!(!summary.to_string().contains("provisional"));
     }
 }
+

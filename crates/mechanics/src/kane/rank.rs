@@ -8,6 +8,9 @@ use super::dynamics::KaneSystem;
 use crate::constraint_rank::{parameter_values, rank, sample};
 use crate::system::System;
 
+/// Entries below this fraction of the largest are rounding noise.
+const NOISE: f64 = 1e-12;
+
 /// The rank of the constraint rows `A` (holonomic rows `∂f/∂q`, then velocity rows) at a
 /// pseudo-random state, the parameters at their values where the system gives them; `None`
 /// when the system's expressions cannot be evaluated (a function the numeric evaluation
@@ -41,9 +44,18 @@ pub fn constraint_rank(system: &System) -> Option<usize> {
         .iter()
         .map(|c| Expr::coordinate(c).as_symbol().map_or(0.5, sample))
         .collect();
-    let (rows, _) = kane.constraint_rows(&q, 0.3, &values);
+    let (mut rows, _) = kane.constraint_rows(&q, 0.3, &values);
     if rows.iter().flatten().any(|x| !x.is_finite()) {
         return None;
+    }
+    // Entries at rounding level of the whole matrix are zeros that the evaluation did not
+    // cancel exactly (the rolling cone's vertical row is 1e-17): without this, a row of such
+    // noise would count as independent, since `rank` judges each row against its own size.
+    let scale = rows.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    for x in rows.iter_mut().flatten() {
+        if x.abs() <= NOISE * scale {
+            *x = 0.0;
+        }
     }
     Some(rank(&rows))
 }
