@@ -176,9 +176,13 @@ fn symbolic_text(eq: &KaneEquations, agreement: &Result<Agreement, Error>) -> St
     }
     out.push_str("Fr + Fr* = 0, one equation per speed (M_r u̇ = f_r):\n");
     for (i, j) in eq.split.independent.iter().enumerate() {
-        let lhs = cas::Expr::add_all(eq.split.independent.iter().enumerate().map(|(k, jk)| {
-            eq.mass[i][k] * cas::Expr::rate(&eq.coordinates[*jk], 2)
-        }));
+        let lhs = cas::Expr::add_all(
+            eq.split
+                .independent
+                .iter()
+                .enumerate()
+                .map(|(k, jk)| eq.mass[i][k] * cas::Expr::rate(&eq.coordinates[*jk], 2)),
+        );
         out.push_str(&format!(
             "  [{}]  {} = {}\n",
             eq.coordinates[*j],

@@ -68,7 +68,11 @@ fn check_and_solve_agree_on_every_example() {
         // A 3-D rolling contact is one statement with three rows, two of them independent:
         // `check` counts the rank of the rows as the derivation does (issue 18).
         assert_eq!(checked, derived, "{}", path.display());
-        assert!(!summary.to_string().contains("provisional"), "{}", path.display());
+        assert!(
+            !summary.to_string().contains("provisional"),
+            "{}",
+            path.display()
+        );
         let solution = analysis.solution(None).unwrap();
         let text = solution.document.to_text();
         assert!(

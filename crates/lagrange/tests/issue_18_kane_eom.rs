@@ -42,7 +42,11 @@ fn the_rolling_disk_reduces_to_three_speeds_equal_to_lagrange_exactly() {
     // The contact point's coordinates are cyclic: they are the dependent rates.
     assert_eq!(names(&eq.split.dependent), ["x", "y"]);
     assert_eq!(names(&eq.split.independent), ["psi", "theta", "phi"]);
-    assert_eq!(eq.split.independent, [2, 3, 4], "the speeds in the coordinates' order");
+    assert_eq!(
+        eq.split.independent,
+        [2, 3, 4],
+        "the speeds in the coordinates' order"
+    );
     // x' = R φ' cos ψ and y' = R φ' sin ψ (the model's comment), exactly.
     let (r, phi_d, psi) = (
         Expr::symbol("R"),
@@ -92,7 +96,10 @@ fn the_bicycle_is_too_large_to_print_and_gives_numbers_at_its_initial_state() {
     let a = example("whipple-bicycle.lag");
     match a.kane_equations().expect("Kane's method applies") {
         KaneEom::Numeric {
-            why, reduced, split, ..
+            why,
+            reduced,
+            split,
+            ..
         } => {
             assert!(matches!(why, KaneError::TooLarge { .. }), "{why}");
             assert_eq!(split.independent.len(), 3);

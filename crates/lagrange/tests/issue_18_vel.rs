@@ -58,7 +58,10 @@ fn vel_is_refused_where_only_positions_may_appear() {
         panic!("a velocity in a point's position was accepted");
     };
     let text = e.render("m.lag", lagrange::model::RenderOptions::default());
-    assert!(text.contains("E204") && text.contains("`vel(P)` is a velocity"), "{text}");
+    assert!(
+        text.contains("E204") && text.contains("`vel(P)` is a velocity"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -68,8 +71,9 @@ fn check_counts_a_rolling_contacts_independent_rows() {
         let a = Analysis::from_file(&root.join(file)).expect("loads");
         let summary = a.source().expect("a file has its source").model.summary();
         assert_eq!(summary.degrees_of_freedom, dof, "{file}");
-        assert!(summary.to_string().contains("independent constraint rows in all"));
+        assert!(summary
+            .to_string()
+            .contains("independent constraint rows in all"));
         assert!(!summary.to_string().contains("provisional"));
     }
 }
-

@@ -289,7 +289,9 @@ impl<'m> Environment<'m> {
         };
         let before = at(self.time - h, &back)?;
         let after = at(self.time + h, &ahead)?;
-        Ok(Value::Vector([0, 1, 2].map(|i| (after[i] - before[i]) / (2.0 * h))))
+        Ok(Value::Vector(
+            [0, 1, 2].map(|i| (after[i] - before[i]) / (2.0 * h)),
+        ))
     }
 
     /// A frame's matrix: its parent's, turned by each of its rotations in order.

@@ -52,7 +52,9 @@ impl KaneEquations {
             if let Some(row) = dm.iter().position(|r| r.iter().any(|x| !x.is_zero())) {
                 return Some(("mass matrix", row));
             }
-            df.iter().position(|x| !x.is_zero()).map(|row| ("forcing", row))
+            df.iter()
+                .position(|x| !x.is_zero())
+                .map(|row| ("forcing", row))
         });
         match exact {
             Ok(None) => Agreement::Exact,
@@ -83,9 +85,7 @@ impl KaneEquations {
         let dm = (0..p)
             .map(|i| {
                 (0..p)
-                    .map(|k| {
-                        Expr::add_all((0..n).map(|l| mt[i][l] * t[l][k])) - self.mass[i][k]
-                    })
+                    .map(|k| Expr::add_all((0..n).map(|l| mt[i][l] * t[l][k])) - self.mass[i][k])
                     .collect()
             })
             .collect();
@@ -125,10 +125,7 @@ impl KaneEquations {
                 largest = largest.max(rel);
             }
         }
-        Agreement::AtStates {
-            states: 3,
-            largest,
-        }
+        Agreement::AtStates { states: 3, largest }
     }
 }
 

@@ -33,8 +33,8 @@ mod symbolic;
 
 pub use agree::Agreement;
 pub use dynamics::{KaneSystem, Reduced, SpeedSplit};
-pub use rank::constraint_rank;
 pub use program::{Program, Variables};
+pub use rank::constraint_rank;
 pub use scalar::{Dual, Scalar};
 pub use steady::{SteadyLinearization, SteadyMotion};
 pub use symbolic::{KaneEquations, Sym, MAX_NODES, MAX_PROGRAM};
@@ -81,7 +81,9 @@ pub enum KaneError {
     #[error("{0}")]
     Value(String),
     /// The symbolic form is over a size limit (the Whipple bicycle's).
-    #[error("{what} has {size} operations, over the limit of {limit} for printing it symbolically")]
+    #[error(
+        "{what} has {size} operations, over the limit of {limit} for printing it symbolically"
+    )]
     TooLarge {
         /// What is too large.
         what: &'static str,
