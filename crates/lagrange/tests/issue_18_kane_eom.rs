@@ -79,7 +79,7 @@ fn a_changed_forcing_is_reported_as_a_difference() {
     let (eq, _) = symbolic(&a);
     let lagrange = a.equations().expect("Lagrange derives the disk");
     let mut forcing = lagrange.forcing().to_vec();
-    forcing[3] = forcing[3] + Expr::one();
+    forcing[3] += Expr::one();
     let values = a.values().expect("values");
     let found = eq.agreement(lagrange.mass_matrix(), &forcing, &values);
     assert_eq!(
