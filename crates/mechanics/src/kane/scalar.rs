@@ -42,6 +42,9 @@ pub trait Scalar:
     fn powi(self, k: i32) -> Self;
     /// `self` to a constant real power.
     fn powf(self, p: f64) -> Self;
+    /// Whether the scalar carries expressions (then the exact constants are built; numeric
+    /// scalars never touch the expression arena in their loops).
+    const SYMBOLIC: bool = false;
     /// A constant known exactly as `exact` (a number of the model): symbolic scalars keep
     /// it, numeric ones take its value `x`.
     fn exact(exact: Expr, x: f64) -> Self {
@@ -231,8 +234,11 @@ impl<T: Scalar> Scalar for Dual<T> {
     fn exact(exact: Expr, x: f64) -> Dual<T> {
         Dual::constant_of(T::exact(exact, x))
     }
+    const SYMBOLIC: bool = T::SYMBOLIC;
     fn pow_exact(self, exact: Expr, p: f64) -> Dual<T> {
-        let below = self.re.pow_exact(exact - 1, p - 1.0);
+        // `exact − 1` interns an expression: only a symbolic scalar needs it.
+        let lowered = if T::SYMBOLIC { exact - 1 } else { exact };
+        let below = self.re.pow_exact(lowered, p - 1.0);
         self.chain(below * self.re, T::exact(exact, p) * below)
     }
     fn atan2(self, x: Dual<T>) -> Dual<T> {

@@ -243,6 +243,7 @@ impl Neg for Sym {
 }
 
 impl Scalar for Sym {
+    const SYMBOLIC: bool = true;
     fn constant(x: f64) -> Sym {
         Sym::of(exact_number(x), x)
     }
