@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use lagrange::{Dialect, ReportFormat, ResultFormat};
+use lagrange::{Dialect, Method, ReportFormat, ResultFormat};
 
 /// lagrange — analytical mechanics from a short model file: kinematics, the Lagrangian, the
 /// equations of motion, and the tools of the symbolic core.
@@ -39,13 +39,17 @@ pub enum Command {
         /// The model file (`.lag`).
         model: PathBuf,
     },
-    /// Print Lagrange's equations of motion `M(q,t) q̈ = f(q,q̇,t)` of a model.
+    /// Print the equations of motion of a model: Lagrange's `M(q,t) q̈ = f(q,q̇,t)`, or
+    /// Kane's reduced equations in the generalized speeds.
     Eom {
         #[command(flatten)]
         input: ModelInput,
         /// Output: text for people, or JSON (schema in docs/json.md).
         #[arg(long, value_enum, default_value_t = ResultFormat::Text)]
         format: ResultFormat,
+        /// How to derive them.
+        #[arg(long, value_enum, default_value_t = Method::Lagrange)]
+        method: Method,
     },
     /// Print the constraint reactions a model asks for (`reactions …`, `reaction NAME: …`),
     /// by Lagrange's equations of the 1st kind and by Newton–Euler, and whether they agree.

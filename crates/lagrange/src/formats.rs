@@ -168,6 +168,26 @@ impl Analysis {
         })
     }
 
+    /// The equations of motion by `method` in `format`: Lagrange's as
+    /// [`Analysis::equations_written`], Kane's as [`Analysis::kane_equations`] gives them.
+    ///
+    /// # Errors
+    /// As [`Analysis::equations`] or [`Analysis::kane_equations`].
+    pub fn equations_written_by(
+        &self,
+        format: ResultFormat,
+        method: crate::Method,
+    ) -> Result<String, Error> {
+        if method == crate::Method::Lagrange {
+            return self.equations_written(format);
+        }
+        let eom = self.kane_equations()?;
+        Ok(match format {
+            ResultFormat::Text => crate::kane_text(&eom),
+            ResultFormat::Json => json_text(&crate::kane_json(&eom)),
+        })
+    }
+
     /// `solution` in `format`, as `lagrange solve` writes it.
     ///
     /// # Errors

@@ -65,23 +65,14 @@ fn check_and_solve_agree_on_every_example() {
         let summary = source.model.summary();
         let checked = summary.degrees_of_freedom;
         let derived = analysis.equations().unwrap().degrees_of_freedom();
-        if summary.to_string().contains("rolling, ") && checked != derived {
-            // A 3-D rolling contact: `check` counts the statement once, the derivation its
-            // independent rows (two of three for a disk on a plane); `check` says its count
-            // is provisional. Left open in issue 18: count the rows in `check` too.
-            assert!(
-                checked < derived + 2 && checked > derived,
-                "{}",
-                path.display()
-            );
-            assert!(
-                summary.to_string().contains("provisional"),
-                "{}",
-                path.display()
-            );
-        } else {
-            assert_eq!(checked, derived, "{}", path.display());
-        }
+        // A 3-D rolling contact is one statement with three rows, two of them independent:
+        // `check` counts the rank of the rows as the derivation does (issue 18).
+        assert_eq!(checked, derived, "{}", path.display());
+        assert!(
+            !summary.to_string().contains("provisional"),
+            "{}",
+            path.display()
+        );
         let solution = analysis.solution(None).unwrap();
         let text = solution.document.to_text();
         assert!(

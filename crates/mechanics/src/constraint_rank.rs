@@ -114,7 +114,7 @@ fn generic_rows(
 }
 
 /// Numeric values of the parameters and inputs that have constant ones.
-fn parameter_values(system: &System) -> Vec<(String, f64)> {
+pub(crate) fn parameter_values(system: &System) -> Vec<(String, f64)> {
     let mut known: Vec<(String, f64)> = Vec::new();
     for (name, value) in system.parameters().iter().chain(system.inputs()) {
         let Some(value) = value else { continue };
@@ -129,7 +129,7 @@ fn parameter_values(system: &System) -> Vec<(String, f64)> {
 }
 
 /// A value in `[0.35, 1.65]` drawn from a symbol's name and order.
-fn sample(s: Symbol) -> f64 {
+pub(crate) fn sample(s: Symbol) -> f64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325 ^ 0x5851_f42d_4c95_7f2d;
     for b in s.name().bytes().chain([s.order()]) {
         h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
@@ -139,7 +139,7 @@ fn sample(s: Symbol) -> f64 {
 
 /// The numerical rank of `rows` (Gram–Schmidt; a remainder below 1e-9 of its row's size is
 /// dependent).
-fn rank(rows: &[Vec<f64>]) -> usize {
+pub(crate) fn rank(rows: &[Vec<f64>]) -> usize {
     let mut basis: Vec<Vec<f64>> = Vec::new();
     for row in rows {
         let mut v = row.clone();

@@ -266,6 +266,34 @@ impl<'m> Environment<'m> {
         Ok(())
     }
 
+    /// `vel(arg)`: the central difference of `arg` along the motion, in two environments at
+    /// `t ± h` with the coordinates moved by `± h q̇` (the lowered model differentiates
+    /// exactly; this is for plots and outputs).
+    fn velocity(&self, arg: &Expr) -> Result<Value, EvaluationError> {
+        let h = TIME_STEP * (1.0 + self.time.abs());
+        let moved = |sign: f64| -> Vec<f64> {
+            self.coordinates
+                .iter()
+                .zip(&self.rates)
+                .map(|(q, r)| q + sign * h * r)
+                .collect()
+        };
+        let (back, ahead) = (moved(-1.0), moved(1.0));
+        let at = |time: f64, coordinates: &[f64]| -> Result<[f64; 3], EvaluationError> {
+            let state = State {
+                time,
+                coordinates,
+                rates: &self.rates,
+            };
+            Environment::new(self.model, &state, false)?.vector(arg)
+        };
+        let before = at(self.time - h, &back)?;
+        let after = at(self.time + h, &ahead)?;
+        Ok(Value::Vector(
+            [0, 1, 2].map(|i| (after[i] - before[i]) / (2.0 * h)),
+        ))
+    }
+
     /// A frame's matrix: its parent's, turned by each of its rotations in order.
     fn frame(&self, id: crate::model::FrameId) -> Result<Matrix, EvaluationError> {
         let Some((parent, rotations)) = &self.model.frame(id).rotation else {
@@ -362,6 +390,13 @@ impl<'m> Environment<'m> {
                     _ => Scalar(f64::NAN),
                 }
             }
+            ExprKind::Call {
+                function: Function::Vel,
+                args,
+            } => match args.first() {
+                Some(arg) => self.velocity(arg)?,
+                None => Vector([f64::NAN; 3]),
+            },
             ExprKind::Call { function, args } => {
                 let values = args
                     .iter()

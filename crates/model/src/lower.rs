@@ -379,6 +379,8 @@ fn call(function: Function, args: &[Value]) -> Result<Value, &'static str> {
         (Function::Norm, [Value::Vector(v)]) => {
             Value::Scalar((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt())
         }
+        // The total time derivative of each inertial component: a point's velocity.
+        (Function::Vel, [Value::Vector(v)]) => Value::Vector(v.map(Cx::dt)),
         (f, [Value::Scalar(x)]) => Value::Scalar(match f {
             Function::Sin => x.sin(),
             Function::Cos => x.cos(),

@@ -202,6 +202,9 @@ pub enum Function {
     Cross,
     /// `norm(v)`: length of a vector.
     Norm,
+    /// `vel(P)`: the velocity of a point (the time derivative of a vector, in the inertial
+    /// frame), where rates may appear.
+    Vel,
 }
 
 impl Function {
@@ -224,6 +227,7 @@ impl Function {
             "dot" => Function::Dot,
             "cross" => Function::Cross,
             "norm" => Function::Norm,
+            "vel" => Function::Vel,
             _ => return None,
         })
     }
@@ -231,7 +235,7 @@ impl Function {
     /// All function names, including aliases.
     pub const NAMES: &'static [&'static str] = &[
         "sin", "cos", "tan", "asin", "acos", "atan", "atan2", "exp", "ln", "log", "sqrt", "abs",
-        "sign", "dot", "cross", "norm",
+        "sign", "dot", "cross", "norm", "vel",
     ];
 
     /// The canonical name.
@@ -253,6 +257,7 @@ impl Function {
             Function::Dot => "dot",
             Function::Cross => "cross",
             Function::Norm => "norm",
+            Function::Vel => "vel",
         }
     }
 
@@ -273,6 +278,7 @@ impl Function {
             Function::Dot => (&[Type::Vector, Type::Vector], Type::Scalar),
             Function::Cross => (&[Type::Vector, Type::Vector], Type::Vector),
             Function::Norm => (&[Type::Vector], Type::Scalar),
+            Function::Vel => (&[Type::Vector], Type::Vector),
             _ => (&[Type::Scalar], Type::Scalar),
         }
     }

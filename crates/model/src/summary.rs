@@ -9,10 +9,13 @@ use crate::model::{Connection, Constraint, ConstraintKind, Load, Model, Reaction
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct Summary {
-    /// Free coordinates minus holonomic constraints (saturating at zero). Provisional: a
-    /// velocity constraint (rolling, a rate relation) may or may not integrate, and redundant
-    /// constraints are not detected until the mechanics stage.
+    /// Free coordinates minus the independent constraint rows (saturating at zero), as
+    /// `lagrange solve` counts them: a 3-D rolling contact is one statement with two or three
+    /// rows, and rows that restate others do not count.
     pub degrees_of_freedom: usize,
+    /// The independent constraint rows (the rank of the constraint matrix at a generic
+    /// state; the number of constraint statements when the model cannot be lowered).
+    pub constraint_rows: usize,
     /// The free coordinates.
     pub coordinates: Vec<String>,
     /// The time-driven coordinates, with their motion.
@@ -59,11 +62,16 @@ impl Model {
             .iter()
             .map(|c| self.describe_constraint(c))
             .collect();
+        // As `solve` counts them (`Equations::degrees_of_freedom`): the independent virtual
+        // displacements, so a velocity constraint takes one away too, and a contact with
+        // several rows as many as are independent (the rank, from the lowered system's graph).
+        let constraint_rows = crate::lower::lower(self)
+            .ok()
+            .and_then(|system| mechanics::kane::constraint_rank(&system))
+            .unwrap_or(self.constraints.len());
         Summary {
-            // As `solve` counts them (`Equations::degrees_of_freedom`): the independent
-            // virtual displacements, so a velocity constraint takes one away too. Provisional:
-            // the statements are counted, not the independent rows the derivation finds.
-            degrees_of_freedom: free.len().saturating_sub(self.constraints.len()),
+            degrees_of_freedom: free.len().saturating_sub(constraint_rows),
+            constraint_rows,
             coordinates: free,
             driven,
             bodies: self.describe_bodies(),
@@ -229,9 +237,20 @@ impl fmt::Display for Summary {
         } else {
             String::new()
         };
+        let statements = self.holonomic_constraints + self.velocity_constraints;
+        // The rows are named only where they differ from the statements (a 3-D contact).
+        let rows = if self.constraint_rows == statements {
+            String::new()
+        } else {
+            format!(
+                ", {} independent constraint row{} in all",
+                self.constraint_rows,
+                plural(self.constraint_rows)
+            )
+        };
         writeln!(
             f,
-            "degrees of freedom: {} ({} coordinate{} − {} holonomic constraint{}{velocity}; provisional)",
+            "degrees of freedom: {} ({} coordinate{} − {} holonomic constraint{}{velocity}{rows})",
             self.degrees_of_freedom,
             self.coordinates.len(),
             plural(self.coordinates.len()),

@@ -76,7 +76,7 @@ fn summary_of_the_design_sketch() {
     let summary = model.summary().to_string();
     assert_eq!(
         summary,
-        "degrees of freedom: 2 (2 coordinates − 0 holonomic constraints; provisional)
+        "degrees of freedom: 2 (2 coordinates − 0 holonomic constraints)
 coordinates: x, theta
 bodies:
   particle at A, mass m_A

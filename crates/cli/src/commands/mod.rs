@@ -25,7 +25,11 @@ pub fn run(command: Command) -> Result<Exit, Failure> {
             solve::run(&input.model, format, out.as_deref(), &input.set)
         }
         Command::Check { model } => check::run(&model),
-        Command::Eom { input, format } => eom::run(&input.model, format, &input.set),
+        Command::Eom {
+            input,
+            format,
+            method,
+        } => eom::run(&input.model, format, method, &input.set),
         Command::Reactions {
             input,
             format,

@@ -19,19 +19,25 @@
 //! | `q̇ = T u + s` | the rates from the speeds | n×p |
 //! | `M_r u̇ = f_r` | Kane's equations `Tᵀ(F + F*) = 0` | p×p, p |
 
+mod agree;
 mod dynamics;
 mod forces;
 mod linear;
 mod program;
+mod rank;
 mod scalar;
 mod split;
 mod steady;
 mod steady_rates;
+mod symbolic;
 
+pub use agree::Agreement;
 pub use dynamics::{KaneSystem, Reduced, SpeedSplit};
 pub use program::{Program, Variables};
+pub use rank::constraint_rank;
 pub use scalar::{Dual, Scalar};
 pub use steady::{SteadyLinearization, SteadyMotion};
+pub use symbolic::{KaneEquations, Sym, MAX_NODES, MAX_PROGRAM};
 
 use thiserror::Error;
 
@@ -74,6 +80,21 @@ pub enum KaneError {
     /// A parameter value missing.
     #[error("{0}")]
     Value(String),
+    /// The symbolic form is over a size limit (the Whipple bicycle's).
+    #[error(
+        "{what} has {size} operations, over the limit of {limit} for printing it symbolically"
+    )]
+    TooLarge {
+        /// What is too large.
+        what: &'static str,
+        /// Its size.
+        size: usize,
+        /// The limit.
+        limit: usize,
+    },
+    /// The normal form of the symbolic equations passed the work limits.
+    #[error("the normal form of Kane's equations: {0}")]
+    WorkLimit(cas::WorkLimitError),
 }
 
 impl KaneError {

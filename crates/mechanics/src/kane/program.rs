@@ -16,12 +16,13 @@ use super::KaneError;
 /// One operation; operands are earlier slots.
 #[derive(Clone, Debug)]
 enum Op {
-    Const(f64),
+    /// A number of the model: its value and the exact number (kept by symbolic scalars).
+    Const(f64, Expr),
     Var(usize),
     Add(Box<[usize]>),
     Mul(Box<[usize]>),
     PowI(usize, i32),
-    PowF(usize, f64),
+    PowF(usize, f64, Expr),
     Pow(usize, usize),
     Sin(usize),
     Cos(usize),
@@ -91,6 +92,8 @@ impl Variables {
 pub struct Program {
     ops: Vec<Op>,
     outputs: Vec<usize>,
+    /// The symbol each variable slot read stands for.
+    symbols: Vec<(usize, Expr)>,
 }
 
 /// Builds a program: each expression node becomes one slot, found again through `seen`.
@@ -98,6 +101,7 @@ struct Builder<'v> {
     vars: &'v Variables,
     ops: Vec<Op>,
     seen: HashMap<Expr, usize>,
+    symbols: Vec<(usize, Expr)>,
 }
 
 impl Program {
@@ -110,6 +114,7 @@ impl Program {
             vars,
             ops: Vec::new(),
             seen: HashMap::new(),
+            symbols: Vec::new(),
         };
         let outputs = outputs
             .iter()
@@ -118,7 +123,13 @@ impl Program {
         Ok(Program {
             ops: b.ops,
             outputs,
+            symbols: b.symbols,
         })
+    }
+
+    /// The symbols the program reads, with their variable slots.
+    pub fn symbols(&self) -> &[(usize, Expr)] {
+        &self.symbols
     }
 
     /// The number of operations (the size of the graph).
@@ -136,39 +147,29 @@ impl Program {
         let mut s: Vec<T> = Vec::with_capacity(self.ops.len());
         for op in &self.ops {
             let x = match op {
-                Op::Const(c) => T::constant(*c),
+                Op::Const(c, e) => T::exact(*e, *c),
                 Op::Var(k) => vars.get(*k).copied().unwrap_or(T::constant(0.0)),
                 Op::Add(a) => a[1..].iter().fold(s[a[0]], |acc, k| acc + s[*k]),
                 Op::Mul(a) => a[1..].iter().fold(s[a[0]], |acc, k| acc * s[*k]),
                 Op::PowI(a, k) => s[*a].powi(*k),
-                Op::PowF(a, p) => s[*a].powf(*p),
-                Op::Pow(a, e) => (s[*e] * s[*a].ln()).exp(),
+                Op::PowF(a, p, e) => s[*a].pow_exact(*e, *p),
+                Op::Pow(a, e) => s[*a].pow(s[*e]),
                 Op::Sin(a) => s[*a].sin(),
                 Op::Cos(a) => s[*a].cos(),
                 Op::Tan(a) => s[*a].sin() / s[*a].cos(),
                 Op::Asin(a) => s[*a].asin(),
-                Op::Acos(a) => T::constant(std::f64::consts::FRAC_PI_2) - s[*a].asin(),
+                Op::Acos(a) => s[*a].acos(),
                 Op::Atan(a) => s[*a].atan(),
-                Op::Atan2(y, x) => atan2(s[*y], s[*x]),
+                Op::Atan2(y, x) => s[*y].atan2(s[*x]),
                 Op::Exp(a) => s[*a].exp(),
                 Op::Ln(a) => s[*a].ln(),
-                Op::Abs(a) => s[*a] * T::constant(s[*a].signum()),
-                Op::Sign(a) => T::constant(s[*a].signum()),
+                Op::Abs(a) => s[*a].abs(),
+                Op::Sign(a) => s[*a].sign(),
             };
             s.push(x);
         }
         self.outputs.iter().map(|k| s[*k]).collect()
     }
-}
-
-/// `atan2(y, x)` with exact derivatives: the angle of the point turned back by its own value's
-/// angle is small, and there `atan` is smooth.
-fn atan2<T: Scalar>(y: T, x: T) -> T {
-    let a = y.value().atan2(x.value());
-    let (c, s) = (T::constant(a.cos()), T::constant(a.sin()));
-    let along = x * c + y * s;
-    let across = y * c - x * s;
-    T::constant(a) + (across / along).atan()
 }
 
 impl Builder<'_> {
@@ -189,10 +190,14 @@ impl Builder<'_> {
 
     fn op(&mut self, e: Expr) -> Result<Op, KaneError> {
         Ok(match e.node() {
-            Node::Number(n) => Op::Const(n.to_f64()),
-            Node::Constant(Constant::Pi) => Op::Const(std::f64::consts::PI),
+            Node::Number(n) => Op::Const(n.to_f64(), e),
+            Node::Constant(Constant::Pi) => Op::Const(std::f64::consts::PI, e),
             Node::Constant(_) => return Err(KaneError::UnknownSymbol(format!("{e:?}"))),
-            Node::Symbol(s) => Op::Var(self.vars.slot(s.name(), s.kind())?),
+            Node::Symbol(s) => {
+                let k = self.vars.slot(s.name(), s.kind())?;
+                self.symbols.push((k, e));
+                Op::Var(k)
+            }
             Node::Add(a) => Op::Add(self.all(a)?),
             Node::Mul(a) => Op::Mul(self.all(a)?),
             Node::Pow([b, x]) => {
@@ -200,7 +205,7 @@ impl Builder<'_> {
                 match x.as_number() {
                     Some(n) => match n.to_i64().and_then(|k| i32::try_from(k).ok()) {
                         Some(k) if n.is_integer() => Op::PowI(base, k),
-                        _ => Op::PowF(base, n.to_f64()),
+                        _ => Op::PowF(base, n.to_f64(), *x),
                     },
                     None => Op::Pow(base, self.slot(*x)?),
                 }

@@ -8,6 +8,8 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+use cas::Expr;
+
 /// What the evaluation of a program needs from its numbers.
 pub trait Scalar:
     Copy
@@ -40,6 +42,38 @@ pub trait Scalar:
     fn powi(self, k: i32) -> Self;
     /// `self` to a constant real power.
     fn powf(self, p: f64) -> Self;
+    /// Whether the scalar carries expressions (then the exact constants are built; numeric
+    /// scalars never touch the expression arena in their loops).
+    const SYMBOLIC: bool = false;
+    /// A constant known exactly as `exact` (a number of the model): symbolic scalars keep
+    /// it, numeric ones take its value `x`.
+    fn exact(exact: Expr, x: f64) -> Self {
+        let _ = exact;
+        Self::constant(x)
+    }
+    /// `self` to the constant power `exact` (value `p`), kept exact by symbolic scalars.
+    fn pow_exact(self, exact: Expr, p: f64) -> Self {
+        let _ = exact;
+        self.powf(p)
+    }
+    /// `self` to a power that is itself a scalar: `exp(e ln self)`.
+    fn pow(self, e: Self) -> Self {
+        (e * self.ln()).exp()
+    }
+    /// `atan2(self, x)`: the angle of the point `(x, self)`.
+    fn atan2(self, x: Self) -> Self;
+    /// Arccosine.
+    fn acos(self) -> Self {
+        Self::constant(std::f64::consts::FRAC_PI_2) - self.asin()
+    }
+    /// `|self|` (its derivative the sign, where defined).
+    fn abs(self) -> Self {
+        self * Self::constant(self.signum())
+    }
+    /// The sign as a scalar (derivative zero where defined).
+    fn sign(self) -> Self {
+        Self::constant(self.signum())
+    }
     /// The sign of the value (its derivative is zero where it is defined).
     fn signum(self) -> f64 {
         let v = self.value();
@@ -86,6 +120,9 @@ impl Scalar for f64 {
     }
     fn powf(self, p: f64) -> f64 {
         f64::powf(self, p)
+    }
+    fn atan2(self, x: f64) -> f64 {
+        f64::atan2(self, x)
     }
 }
 
@@ -193,6 +230,35 @@ impl<T: Scalar> Scalar for Dual<T> {
     fn powf(self, p: f64) -> Dual<T> {
         let below = self.re.powf(p - 1.0);
         self.chain(below * self.re, T::constant(p) * below)
+    }
+    fn exact(exact: Expr, x: f64) -> Dual<T> {
+        Dual::constant_of(T::exact(exact, x))
+    }
+    const SYMBOLIC: bool = T::SYMBOLIC;
+    fn pow_exact(self, exact: Expr, p: f64) -> Dual<T> {
+        // `exact − 1` interns an expression: only a symbolic scalar needs it.
+        let lowered = if T::SYMBOLIC { exact - 1 } else { exact };
+        let below = self.re.pow_exact(lowered, p - 1.0);
+        self.chain(below * self.re, T::exact(exact, p) * below)
+    }
+    fn atan2(self, x: Dual<T>) -> Dual<T> {
+        // d atan2(y, x) = (x dy − y dx) / (x² + y²), exact with no branch to choose.
+        let r2 = x.re * x.re + self.re * self.re;
+        Dual::new(
+            self.re.atan2(x.re),
+            (x.re * self.eps - self.re * x.eps) / r2,
+        )
+    }
+    fn acos(self) -> Dual<T> {
+        let one = T::constant(1.0);
+        self.chain(self.re.acos(), -(one / (one - self.re * self.re).sqrt()))
+    }
+    fn abs(self) -> Dual<T> {
+        let s = self.re.sign();
+        Dual::new(self.re.abs(), s * self.eps)
+    }
+    fn sign(self) -> Dual<T> {
+        Dual::constant_of(self.re.sign())
     }
 }
 

@@ -130,7 +130,7 @@ impl KaneSystem {
     /// derivatives at a generic state near `q0` (every coordinate moved, every speed nonzero)
     /// below rounding. (The rates of cyclic coordinates may depend on them: a bicycle's
     /// `ẋ = v cos ψ`.)
-    fn cyclic(
+    pub(super) fn cyclic(
         &self,
         split: &SpeedSplit,
         q0: &[f64],

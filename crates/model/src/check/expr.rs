@@ -437,6 +437,23 @@ impl ExprChecker<'_> {
             }
             return None;
         }
+        if resolved == Function::Vel && !self.place.rates {
+            // A velocity holds rates: it belongs where rates do (velocity constraints, forces).
+            self.diagnostics.push(
+                Diagnostic::new(
+                    DiagnosticKind::RateNotAllowed {
+                        name: "vel".to_string(),
+                        place: self.place.what,
+                    },
+                    span,
+                )
+                .with_help(
+                    "`vel(P)` is a velocity; it belongs in forces, dissipation and velocity \
+                     constraints, not in positions, potentials or holonomic constraints.",
+                ),
+            );
+            return None;
+        }
         let mut checked = Vec::with_capacity(args.len());
         let mut ok = true;
         for (arg, &ty) in args.iter().zip(parameter_types) {
@@ -491,6 +508,9 @@ pub(crate) fn rate_degree(expr: &Expr) -> Option<u32> {
             let degrees = degrees?;
             match function {
                 Function::Dot | Function::Cross => Some(degrees.iter().sum()),
+                // A velocity is linear in the rates when its argument holds none.
+                Function::Vel if degrees.iter().all(|&d| d == 0) => Some(1),
+                Function::Vel => None,
                 _ if degrees.iter().all(|&d| d == 0) => Some(0),
                 _ => None,
             }
