@@ -41,6 +41,7 @@ pub mod linearize;
 mod polynomial_rest;
 mod reactions;
 mod system;
+mod tree;
 mod unilateral;
 
 pub use configuration::{configuration, keep_distinct_configurations};
@@ -58,4 +59,5 @@ pub use reactions::{
 pub use system::{
     rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,
 };
+pub use tree::{KinematicTree, TreeNode};
 pub use unilateral::{along_motion, scan as scan_unilateral, Unilateral};

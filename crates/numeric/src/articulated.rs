@@ -196,7 +196,11 @@ impl Articulated {
         bias_acceleration: &[f64],
         force: f64,
     ) -> Result<(), LinearError> {
-        let (o, d, b) = (self.offset[j], self.offset[j + 1] - self.offset[j], self.block[j]);
+        let (o, d, b) = (
+            self.offset[j],
+            self.offset[j + 1] - self.offset[j],
+            self.block[j],
+        );
         let s = &motion[o..o + d];
         let c = &bias_acceleration[o..o + d];
         let (head, tail) = self.articulated.split_at_mut(b);
@@ -224,7 +228,11 @@ impl Articulated {
         let Some(p) = self.parent[j] else {
             return Ok(());
         };
-        let (po, pd, pb) = (self.offset[p], self.offset[p + 1] - self.offset[p], self.block[p]);
+        let (po, pd, pb) = (
+            self.offset[p],
+            self.offset[p + 1] - self.offset[p],
+            self.block[p],
+        );
         let parent_block = &mut head[pb..pb + pd * pd];
         let u = &self.projected[o..o + d];
         let step = reduced / pivot;
@@ -254,7 +262,8 @@ impl Articulated {
         }
         let x = reduced / self.pivot[j];
         for r in 0..d {
-            self.acceleration[o + r] = self.scratch[r] + motion[o + r] * x + bias_acceleration[o + r];
+            self.acceleration[o + r] =
+                self.scratch[r] + motion[o + r] * x + bias_acceleration[o + r];
         }
         x
     }
@@ -307,7 +316,10 @@ mod tests {
             .solve(&motion, &zero, &zero, &forces, &mut found)
             .is_ok());
         for (x, y) in found.iter().zip(&expected) {
-            assert!((x - y).abs() <= 1e-12 * (1.0 + y.abs()), "{found:?} vs {expected:?}");
+            assert!(
+                (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                "{found:?} vs {expected:?}"
+            );
         }
     }
 
