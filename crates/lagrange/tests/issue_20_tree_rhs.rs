@@ -26,14 +26,25 @@ fn examples() -> Vec<std::path::PathBuf> {
 /// `bench/models/nlink.sh N`: point masses on rods, absolute angles.
 fn nlink(n: usize) -> String {
     let coordinates: Vec<String> = (1..=n).map(|i| format!("th{i}")).collect();
-    let mut text = format!("coordinates {}\nparameters g = 9.81", coordinates.join(", "));
+    let mut text = format!(
+        "coordinates {}\nparameters g = 9.81",
+        coordinates.join(", ")
+    );
     for i in 1..=n {
         // Unequal masses and lengths, so that no column coincides by accident.
-        text += &format!(", m{i} = {}, l{i} = {}", 1.0 + 0.1 * i as f64, 1.0 - 0.03 * i as f64);
+        text += &format!(
+            ", m{i} = {}, l{i} = {}",
+            1.0 + 0.1 * i as f64,
+            1.0 - 0.03 * i as f64
+        );
     }
     text += "\nframe N\n";
     for i in 1..=n {
-        let previous = if i > 1 { format!("P{} + ", i - 1) } else { String::new() };
+        let previous = if i > 1 {
+            format!("P{} + ", i - 1)
+        } else {
+            String::new()
+        };
         text += &format!(
             "point P{i} = {previous}l{i}*sin(th{i})*N.x - l{i}*cos(th{i})*N.y\nparticle P{i} mass m{i}\n"
         );
@@ -49,7 +60,11 @@ fn chain3d(n: usize) -> String {
         coordinates.join(", ")
     );
     for i in 1..=n {
-        let from = if i > 1 { format!("P{}", i - 1) } else { "origin".into() };
+        let from = if i > 1 {
+            format!("P{}", i - 1)
+        } else {
+            "origin".into()
+        };
         text += &format!(
             "frame B{i} = N rotated a{i} about x then b{i} about y\n\
              point G{i} = {from} - l/2*B{i}.z\n\
@@ -129,13 +144,19 @@ fn the_tree_gives_the_dense_accelerations_on_the_benchmark_chains() {
         let analysis = Analysis::from_text(&nlink(n)).unwrap();
         let (has_tree, used) = compare(&analysis, &format!("n-link {n}"), &mut next);
         assert!(has_tree, "the {n}-link pendulum has no tree");
-        assert!(used || n < 10, "the {n}-link pendulum's rhs does not go by its tree");
+        assert!(
+            used || n < 10,
+            "the {n}-link pendulum's rhs does not go by its tree"
+        );
     }
     for n in [1, 2, 3, 5] {
         let analysis = Analysis::from_text(&chain3d(n)).unwrap();
         let (has_tree, used) = compare(&analysis, &format!("3-D chain {n}"), &mut next);
         assert!(has_tree, "the 3-D chain of {n} rods has no tree");
-        assert!(used || n < 20, "the 3-D chain of {n} rods does not go by its tree");
+        assert!(
+            used || n < 20,
+            "the 3-D chain of {n} rods does not go by its tree"
+        );
     }
 }
 

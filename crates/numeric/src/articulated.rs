@@ -74,6 +74,11 @@ pub struct Articulated {
     /// For each component, the parent's component it continues, as an index into the
     /// per-component buffers.
     source: Vec<Option<usize>>,
+    /// Node `j`'s continued components as `(component, parent's component)`, both local to
+    /// their node, at `continued_offset[j]..continued_offset[j + 1]`: the inner loops run over
+    /// these alone, with no test per component.
+    continued: Vec<(usize, usize)>,
+    continued_offset: Vec<usize>,
     /// Node `j`'s `d_j × d_j` block starts at `block[j]`.
     block: Vec<usize>,
     inertia: Vec<f64>,
@@ -122,12 +127,25 @@ impl Articulated {
             offset.push(source.len());
             block.push(inertia.len());
         }
+        let mut continued = Vec::new();
+        let mut continued_offset = vec![0];
+        for (j, node) in nodes.iter().enumerate() {
+            let parent_start = node.parent.map_or(0, |p| offset[p]);
+            for (r, s) in source[offset[j]..offset[j + 1]].iter().enumerate() {
+                if let Some(g) = s {
+                    continued.push((r, g - parent_start));
+                }
+            }
+            continued_offset.push(continued.len());
+        }
         let width = source.len();
         let largest = nodes.iter().map(|n| n.source.len()).max().unwrap_or(0);
         Ok(Articulated {
             parent: nodes.iter().map(|n| n.parent).collect(),
             offset,
             source,
+            continued,
+            continued_offset,
             block,
             articulated: inertia.clone(),
             inertia,
@@ -181,8 +199,8 @@ impl Articulated {
         for j in (0..self.len()).rev() {
             self.eliminate(j, motion, bias_acceleration, forces[j])?;
         }
-        for j in 0..self.len() {
-            accelerations[j] = self.advance(j, motion, bias_acceleration);
+        for (j, acceleration) in accelerations.iter_mut().enumerate().take(self.len()) {
+            *acceleration = self.advance(j, motion, bias_acceleration);
         }
         Ok(())
     }
@@ -203,22 +221,31 @@ impl Articulated {
         );
         let s = &motion[o..o + d];
         let c = &bias_acceleration[o..o + d];
+        if d == 0 {
+            // A coordinate that moves no mass: nothing to pivot on.
+            return Err(LinearError::Singular { column: j });
+        }
         let (head, tail) = self.articulated.split_at_mut(b);
         let own = &tail[..d * d];
         let mut pivot = 0.0;
         let mut reduced = force;
-        for r in 0..d {
-            let row = &own[r * d..(r + 1) * d];
+        let rows = own
+            .chunks_exact(d)
+            .zip(&mut self.projected[o..o + d])
+            .zip(&mut self.scratch[..d])
+            .zip(s.iter().zip(c))
+            .zip(&self.bias[o..o + d]);
+        for ((((row, projected), scratch), (&sr, &cr)), &br) in rows {
             let (mut u, mut ic) = (0.0, 0.0);
-            for k in 0..d {
-                u += row[k] * s[k];
-                ic += row[k] * c[k];
+            for ((&w, &sk), &ck) in row.iter().zip(s).zip(c) {
+                u += w * sk;
+                ic += w * ck;
             }
-            self.projected[o + r] = u;
-            pivot += s[r] * u;
-            reduced -= s[r] * self.bias[o + r] + u * c[r];
+            *projected = u;
+            pivot += sr * u;
+            reduced -= sr * br + u * cr;
             // pᴬ + Iᴬ c, completed below once u is known.
-            self.scratch[r] = self.bias[o + r] + ic;
+            *scratch = br + ic;
         }
         if !(pivot > 0.0 && pivot.is_finite()) {
             return Err(LinearError::Singular { column: j });
@@ -236,16 +263,14 @@ impl Articulated {
         let parent_block = &mut head[pb..pb + pd * pd];
         let u = &self.projected[o..o + d];
         let step = reduced / pivot;
-        for r in 0..d {
-            let Some(sr) = self.source[o + r] else {
-                continue;
-            };
-            self.bias[sr] += self.scratch[r] + u[r] * step;
+        let continued = &self.continued[self.continued_offset[j]..self.continued_offset[j + 1]];
+        for &(r, sr) in continued {
+            self.bias[po + sr] += self.scratch[r] + u[r] * step;
             let scaled = u[r] / pivot;
-            for k in 0..d {
-                if let Some(sk) = self.source[o + k] {
-                    parent_block[(sr - po) * pd + (sk - po)] += own[r * d + k] - scaled * u[k];
-                }
+            let row = &own[r * d..(r + 1) * d];
+            let target = &mut parent_block[sr * pd..(sr + 1) * pd];
+            for &(k, sk) in continued {
+                target[sk] += row[k] - scaled * u[k];
             }
         }
         Ok(())
@@ -255,10 +280,15 @@ impl Articulated {
     fn advance(&mut self, j: usize, motion: &[f64], bias_acceleration: &[f64]) -> f64 {
         let (o, d) = (self.offset[j], self.offset[j + 1] - self.offset[j]);
         let mut reduced = self.reduced[j];
-        for r in 0..d {
-            let gathered = self.source[o + r].map_or(0.0, |g| self.acceleration[g]);
-            self.scratch[r] = gathered;
-            reduced -= self.projected[o + r] * gathered;
+        self.scratch[..d].fill(0.0);
+        if let Some(p) = self.parent[j] {
+            let po = self.offset[p];
+            for &(r, sr) in &self.continued[self.continued_offset[j]..self.continued_offset[j + 1]]
+            {
+                let gathered = self.acceleration[po + sr];
+                self.scratch[r] = gathered;
+                reduced -= self.projected[o + r] * gathered;
+            }
         }
         let x = reduced / self.pivot[j];
         for r in 0..d {

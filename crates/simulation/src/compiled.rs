@@ -189,8 +189,8 @@ pub(crate) struct TreeRhs {
     pub(crate) solver: Articulated,
     pub(crate) width: usize,
     /// Whether the right-hand side goes by the tree: eliminating on it costs less than the
-    /// dense solve, `Σ d_j²` multiply–adds a few times over against `n³/6` for `L D Lᵀ` and
-    /// `n²` entries of `M` on the tape. A tree kept but not preferred still serves
+    /// dense solve, `10 n + Σ d_j²` against `n³/6` for `L D Lᵀ` and `n²` entries of `M` on
+    /// the tape (see `compile_tree`). A tree kept but not preferred still serves
     /// [`crate::Simulation::rhs_both_routes`].
     pub(crate) preferred: bool,
 }
@@ -206,7 +206,11 @@ fn compile_tree(
 ) -> Option<TreeRhs> {
     let tree = KinematicTree::of(system, equations)?;
     let n = equations.coordinates().len();
-    let preferred = 4 * tree.cost() < n * n * n / 6 + n * n;
+    // Callgrind's counts per evaluation (docs/performance.md, issue 20) put the tree at about
+    // 400 instructions a node plus 40 per `d_j²`, the dense route at 40 per unit of
+    // `n³/6 + n²`: the tree wins from n ≈ 7 on the n-link pendulum (d = 2) and from about
+    // 20 coordinates on the 3-D chain (d = 9).
+    let preferred = 10 * n + tree.cost() < n * n * n / 6 + n * n;
     let width = tree.motion().len();
     let mut outputs = fold.all(tree.motion());
     outputs.extend(fold.all(tree.bias_acceleration()));

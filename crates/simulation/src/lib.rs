@@ -24,6 +24,6 @@ mod forms;
 mod run;
 
 pub use run::{
-    Drift, InitialCorrection, Limit, MethodName, RecordedCrossing, Settings, Setup, Simulation,
-    SimulationError, StopEvent,
+    Drift, InitialCorrection, Limit, MethodName, RecordedCrossing, RhsRoutes, Settings, Setup,
+    Simulation, SimulationError, StopEvent,
 };
