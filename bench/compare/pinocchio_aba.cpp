@@ -2,6 +2,9 @@
 // no Python call overhead is counted against it. Built and run by bench/compare/run.sh.
 //   pinocchio_aba nlink N     planar N-link pendulum, point masses m = 1 on rods l = 1
 //   pinocchio_aba chain3d N   3-D chain of N rods on universal joints (rotation about x, then y)
+//   pinocchio_aba KIND N REPS  REPS evaluations per sample (default 20000), 15 samples: two
+//                              runs under callgrind with different REPS give the instructions
+//                              of one evaluation (bench/compare/callgrind.sh)
 // Prints the median time of one forward-dynamics evaluation in nanoseconds.
 #include <pinocchio/multibody.hpp>
 #include <pinocchio/algorithm/aba.hpp>
@@ -49,7 +52,7 @@ static pinocchio::Model chain3d(int n) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: pinocchio_aba nlink|chain3d N\n");
+    std::fprintf(stderr, "usage: pinocchio_aba nlink|chain3d N [REPS]\n");
     return 2;
   }
   const int n = std::atoi(argv[2]);
@@ -58,7 +61,7 @@ int main(int argc, char** argv) {
   Eigen::VectorXd q = Eigen::VectorXd::Constant(model.nq, 0.3);
   Eigen::VectorXd v = Eigen::VectorXd::Constant(model.nv, 0.1);
   Eigen::VectorXd tau = Eigen::VectorXd::Zero(model.nv);
-  const int reps = 20000;
+  const int reps = argc > 3 ? std::max(1, std::atoi(argv[3])) : 20000;
   std::vector<double> samples;
   double sink = 0;
   for (int s = 0; s < 15; ++s) {

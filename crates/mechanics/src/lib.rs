@@ -43,6 +43,7 @@ mod polynomial_rest;
 mod reactions;
 pub mod stability_condition;
 mod system;
+mod tree;
 mod unilateral;
 
 pub use configuration::{configuration, keep_distinct_configurations};
@@ -61,4 +62,5 @@ pub use reactions::{
 pub use system::{
     rotation_about, Constraint, ConstraintForm, Load, Particle, RigidBody, Rotation, System, Vector,
 };
+pub use tree::{KinematicTree, TreeNode};
 pub use unilateral::{along_motion, scan as scan_unilateral, Unilateral};

@@ -2,15 +2,19 @@
 //! input layout shared by all tapes, `[q₁…qₙ, q̇₁…q̇ₙ, t, parameters…]`.
 //!
 //! Four tapes, each evaluated only where it is needed:
-//! * dynamics — `M` (row-major), `f`, `A`, `b`: every right-hand side evaluation;
+//! * dynamics — `M` (row-major), `f`, `A`, `b`: every right-hand side evaluation, unless
+//!   the tree below serves it;
+//! * tree — `S`, `c`, `b`, `τ` of the model's kinematic tree ([`mechanics::KinematicTree`]),
+//!   solved in O(n) by [`numeric::Articulated`]: every right-hand side evaluation of a model
+//!   without constraints whose tree is cheaper than the dense `M` and agrees with it;
 //! * monitor — energy, `Φ` of the holonomic rows, `c` of every row: at outputs and projections;
 //! * canonical — `M`, `p₀ = ∂L/∂q̇|_{q̇=0}` and `∂L/∂q + Q`: only for the symplectic method;
 //! * events — the stop events (`--stop-when`, lost contacts), then the recorded ones
 //!   (`--record-when`).
 
 use cas::{Expr, Symbol};
-use mechanics::{ConstraintForm, Equations, System};
-use numeric::{Tape, TapeError};
+use mechanics::{ConstraintForm, Equations, KinematicTree, System};
+use numeric::{Articulated, ArticulatedNode, Tape, TapeError};
 
 /// A tape with its own buffers: evaluating allocates nothing.
 #[derive(Clone, Debug)]
@@ -50,6 +54,8 @@ pub(crate) struct Compiled {
     pub(crate) m: usize,
     pub(crate) holonomic: Vec<usize>,
     pub(crate) dynamics: Evaluator,
+    /// The articulated-body route, where the model has a tree worth using.
+    pub(crate) tree: Option<TreeRhs>,
     pub(crate) monitor: Evaluator,
     pub(crate) canonical: Option<(Evaluator, Evaluator)>,
     pub(crate) events: Option<Evaluator>,
@@ -86,6 +92,11 @@ impl Compiled {
         dynamic_outputs.extend(fold.all(&equations.constraint_matrix().concat()));
         dynamic_outputs.extend(fold.all(equations.constraint_rhs()));
         let dynamics = Evaluator::new(&dynamic_outputs, &inputs)?;
+        let tree = if m == 0 {
+            compile_tree(system, equations, &fold, &inputs, &values)
+        } else {
+            None
+        };
 
         let levels = constraint_levels(system, equations);
         let drift_known = levels.len() == m;
@@ -113,11 +124,12 @@ impl Compiled {
         } else {
             Some(Evaluator::new(&fold.all(events), &inputs)?)
         };
-        Ok(Compiled {
+        let mut compiled = Compiled {
             n,
             m,
             holonomic,
             dynamics,
+            tree,
             monitor,
             canonical,
             events,
@@ -125,7 +137,11 @@ impl Compiled {
             stopping_events,
             inputs: values,
             drift_known,
-        })
+        };
+        if compiled.tree.is_some() && !crate::forms::tree_agrees(&mut compiled) {
+            compiled.tree = None;
+        }
+        Ok(compiled)
     }
 
     /// How many event functions there are: each output of the events tape, then each
@@ -178,6 +194,76 @@ impl Compiled {
         let velocity = largest(&out[1 + holonomic..]);
         (out[0], position, velocity)
     }
+}
+
+/// The articulated-body route of a model without constraints: a tape of `[S, c, b, τ]` and
+/// the tree's solver (with `W` in place). Invariant: the tape's outputs are `3 width + n`.
+#[derive(Clone, Debug)]
+pub(crate) struct TreeRhs {
+    pub(crate) evaluator: Evaluator,
+    pub(crate) solver: Articulated,
+    pub(crate) width: usize,
+    /// Whether the right-hand side goes by the tree: eliminating on it costs less than the
+    /// dense solve, `10 n + Σ d_j²` against `n³/6` for `L D Lᵀ` and `n²` entries of `M` on
+    /// the tape (see `compile_tree`). A tree kept but not preferred still serves
+    /// [`crate::Simulation::rhs_both_routes`].
+    pub(crate) preferred: bool,
+}
+
+/// The tree route, where the model has a kinematic tree; `None` where it has none or a number
+/// is missing.
+fn compile_tree(
+    system: &System,
+    equations: &Equations,
+    fold: &Folder,
+    inputs: &[Symbol],
+    values: &[f64],
+) -> Option<TreeRhs> {
+    let tree = KinematicTree::of(system, equations)?;
+    let n = equations.coordinates().len();
+    // Callgrind's counts per evaluation (docs/performance.md, issue 20) put the tree at about
+    // 400 instructions a node plus 40 per `d_j²`, the dense route at 40 per unit of
+    // `n³/6 + n²`: the tree wins from n ≈ 7 on the n-link pendulum (d = 2) and from about
+    // 20 coordinates on the 3-D chain (d = 9).
+    let preferred = 10 * n + tree.cost() < n * n * n / 6 + n * n;
+    let width = tree.motion().len();
+    let mut outputs = fold.all(tree.motion());
+    outputs.extend(fold.all(tree.bias_acceleration()));
+    outputs.extend(fold.all(tree.bias_force()));
+    outputs.extend(fold.all(tree.forces()));
+    let evaluator = Evaluator::new(&outputs, inputs).ok()?;
+    // `W` is free of the state (`KinematicTree` checks): evaluated once, at the parameters.
+    let inertias: Vec<Expr> = tree
+        .nodes()
+        .iter()
+        .flat_map(|node| fold.all(&node.inertia))
+        .collect();
+    let mut inertia = Evaluator::new(&inertias, inputs).ok()?;
+    let inertia = inertia.eval(values);
+    if !inertia.iter().all(|x| x.is_finite()) {
+        return None;
+    }
+    let mut at = 0;
+    let nodes: Vec<ArticulatedNode> = tree
+        .nodes()
+        .iter()
+        .map(|node| {
+            let size = node.inertia.len();
+            at += size;
+            ArticulatedNode {
+                parent: node.parent,
+                source: node.source.clone(),
+                inertia: inertia[at - size..at].to_vec(),
+            }
+        })
+        .collect();
+    let solver = Articulated::new(&nodes).ok()?;
+    Some(TreeRhs {
+        evaluator,
+        solver,
+        width,
+        preferred,
+    })
 }
 
 /// The constraints kept with multipliers, at position level (`Φ`, for holonomic rows) and at

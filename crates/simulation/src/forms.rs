@@ -9,7 +9,7 @@
 
 use numeric::{cholesky_solve_in_place, solve_in_place, LinearError, OdeSystem, RhsError};
 
-use crate::compiled::Compiled;
+use crate::compiled::{Compiled, TreeRhs};
 
 fn singular(error: LinearError) -> RhsError {
     match error {
@@ -158,18 +158,12 @@ impl<'c> SecondOrder<'c> {
         let out = self.compiled.dynamics.eval(&self.compiled.inputs);
         out[n * n + n..n * n + n + m * n].to_vec()
     }
-}
 
-impl OdeSystem for SecondOrder<'_> {
-    fn dimension(&self) -> usize {
-        2 * self.compiled.n
-    }
-
-    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+    /// `q̈` (and the multipliers) by the dense solve of `M q̈ = f` or the KKT system, at the
+    /// state in the input buffer, into `self.vector`.
+    fn dense(&mut self) -> Result<(), RhsError> {
         let (n, m) = (self.compiled.n, self.compiled.m);
         let c = &mut *self.compiled;
-        c.inputs[..2 * n].copy_from_slice(y);
-        c.inputs[2 * n] = t;
         let out = c.dynamics.eval(&c.inputs);
         let (mass, rest) = out.split_at(n * n);
         let (forcing, rest) = rest.split_at(n);
@@ -211,6 +205,99 @@ impl OdeSystem for SecondOrder<'_> {
                 &mut self.vector[..size],
             )
             .map_err(singular)?;
+        }
+        Ok(())
+    }
+
+    /// `q̈` by the tree's O(n) elimination at the state in the input buffer, into
+    /// `self.vector`; `None` without a tree.
+    fn articulated(&mut self) -> Option<Result<(), LinearError>> {
+        let n = self.compiled.n;
+        let c = &mut *self.compiled;
+        let TreeRhs {
+            evaluator,
+            solver,
+            width,
+            ..
+        } = c.tree.as_mut()?;
+        let w = *width;
+        let out = evaluator.eval(&c.inputs);
+        let (motion, rest) = out.split_at(w);
+        let (bias_acceleration, rest) = rest.split_at(w);
+        let (bias_force, forces) = rest.split_at(w);
+        Some(solver.solve(
+            motion,
+            bias_acceleration,
+            bias_force,
+            forces,
+            &mut self.vector[..n],
+        ))
+    }
+
+    /// `q̈` at `(t, y)` by the dense solve and by the tree (`None` without one or where the
+    /// tree's elimination fails): the two routes side by side, for tests and benchmarks.
+    pub(crate) fn both_routes(
+        &mut self,
+        t: f64,
+        y: &[f64],
+    ) -> (Result<Vec<f64>, RhsError>, Option<Vec<f64>>) {
+        let n = self.compiled.n;
+        self.compiled.inputs[..2 * n].copy_from_slice(y);
+        self.compiled.inputs[2 * n] = t;
+        let tree = match self.articulated() {
+            Some(Ok(())) => Some(self.vector[..n].to_vec()),
+            _ => None,
+        };
+        let dense = self.dense().map(|()| self.vector[..n].to_vec());
+        (dense, tree)
+    }
+}
+
+/// Whether the tree's `q̈` agrees with the dense solve's at three states spread over the
+/// configuration space (to 1e-8 of the largest), where both can be solved; at least two must
+/// be. The check is numeric so that it holds whatever route derived `M` and `f`; an
+/// analytic function that agreed at these states and differed elsewhere would be a
+/// coincidence of measure zero.
+pub(crate) fn tree_agrees(compiled: &mut Compiled) -> bool {
+    let n = compiled.n;
+    let saved = compiled.inputs[..=2 * n].to_vec();
+    let mut system = SecondOrder::new(compiled);
+    let mut compared = 0;
+    let mut agree = true;
+    for k in 0..3u32 {
+        let y: Vec<f64> = (0..2 * n)
+            .map(|i| {
+                (1.7 * f64::from(k + 1) + 0.9 * i as f64).sin() * if i < n { 2.0 } else { 1.0 }
+            })
+            .collect();
+        if let (Ok(dense), Some(tree)) = system.both_routes(0.25 * f64::from(k), &y) {
+            let scale = dense.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+            let error = dense
+                .iter()
+                .zip(&tree)
+                .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()));
+            compared += 1;
+            agree &= error <= 1e-8 * scale;
+        }
+    }
+    system.compiled.inputs[..=2 * n].copy_from_slice(&saved);
+    agree && compared >= 2
+}
+
+impl OdeSystem for SecondOrder<'_> {
+    fn dimension(&self) -> usize {
+        2 * self.compiled.n
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        let n = self.compiled.n;
+        self.compiled.inputs[..2 * n].copy_from_slice(y);
+        self.compiled.inputs[2 * n] = t;
+        // A pivot the tree cannot take (a singular or non-finite state) goes to the dense
+        // solve, which names the singular column as it always has.
+        let by_tree = self.compiled.tree.as_ref().is_some_and(|t| t.preferred);
+        if !(by_tree && matches!(self.articulated(), Some(Ok(())))) {
+            self.dense()?;
         }
         dy[..n].copy_from_slice(&y[n..]);
         dy[n..].copy_from_slice(&self.vector[..n]);

@@ -24,6 +24,6 @@ mod forms;
 mod run;
 
 pub use run::{
-    Drift, InitialCorrection, Limit, MethodName, NumericContacts, RecordedCrossing, Settings,
-    Setup, Simulation, SimulationError, StopEvent,
+    Drift, InitialCorrection, Limit, MethodName, NumericContacts, RecordedCrossing, RhsRoutes,
+    Settings, Setup, Simulation, SimulationError, StopEvent,
 };

@@ -297,6 +297,10 @@ pub struct RecordedCrossing<'a> {
     pub row: &'a [f64],
 }
 
+/// `q̈` by the dense solve (or its error) and by the kinematic tree, where there is one
+/// ([`Simulation::rhs_both_routes`]).
+pub type RhsRoutes = (Result<Vec<f64>, RhsError>, Option<Vec<f64>>);
+
 /// What stops a simulation before it starts.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -662,10 +666,46 @@ impl Simulation {
         self.initial_energy
     }
 
-    /// How many tape instructions one right-hand side evaluation runs.
+    /// How many tape instructions one right-hand side evaluation runs (the tree's tape where
+    /// the right-hand side goes by the tree, see [`Simulation::rhs_by_tree`]).
     #[must_use]
     pub fn rhs_instructions(&self) -> usize {
-        self.compiled.dynamics.instruction_count()
+        match &self.compiled.tree {
+            Some(tree) if tree.preferred => tree.evaluator.instruction_count(),
+            _ => self.compiled.dynamics.instruction_count(),
+        }
+    }
+
+    /// Whether `q̈` is evaluated in O(n) on the model's kinematic tree
+    /// ([`mechanics::KinematicTree`], [`numeric::Articulated`]) rather than by the dense
+    /// solve of `M q̈ = f`: a model without constraints whose tree is cheaper and agrees with
+    /// the dense solve at sample states.
+    #[must_use]
+    pub fn rhs_by_tree(&self) -> bool {
+        self.compiled.tree.as_ref().is_some_and(|t| t.preferred)
+    }
+
+    /// Switches the right-hand side to the tree (`true`) or to the dense solve (`false`), for
+    /// benchmarks that compare the routes in one process; returns whether it now goes by the
+    /// tree (never where the model has none).
+    pub fn set_rhs_by_tree(&mut self, by_tree: bool) -> bool {
+        if let Some(tree) = self.compiled.tree.as_mut() {
+            tree.preferred = by_tree;
+        }
+        self.rhs_by_tree()
+    }
+
+    /// `q̈` at `(t, (q, q̇))` by the dense solve (or its error: a singular mass matrix) and,
+    /// where the model has a kinematic tree that agrees with the dense solve (whether or not
+    /// the right-hand side goes by it), by the tree (`None` otherwise, or where its
+    /// elimination fails at the state): the two routes side by side, for tests and
+    /// benchmarks. `None` when `state` does not hold two numbers per coordinate.
+    pub fn rhs_both_routes(&mut self, t: f64, state: &[f64]) -> Option<RhsRoutes> {
+        if state.len() != 2 * self.compiled.n {
+            return None;
+        }
+        let mut system = SecondOrder::new(&mut self.compiled);
+        Some(system.both_routes(t, state))
     }
 
     /// Hands `body` the right-hand side `(t, (q, q̇)) → (q̇, q̈)` as the integrator sees it
