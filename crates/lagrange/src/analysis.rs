@@ -338,12 +338,25 @@ impl Analysis {
             Error::Reactions(R::WorkLimit(error)) => (None, error.clone()),
             _ => return error,
         };
-        let at = part.and_then(|p| self.statement_of(&p));
+        // A limit hit in a phase of the whole system (the sum of the parts, Lagrange's
+        // equations) has no statement of its own: the coordinates it derives are named.
+        let at = match part {
+            Some(p) => self.statement_of(&p),
+            None => self.coordinates_statement(),
+        };
         Error::WorkLimit {
             message: error.to_string(),
             error: limit,
             at,
         }
+    }
+
+    /// Line and column of the first coordinate's name in the `coordinates` statement.
+    fn coordinates_statement(&self) -> Option<(usize, usize)> {
+        let source = self.source.as_ref()?;
+        let span = source.model.coordinates().first()?.name.span;
+        let at = model::line_col(&source.text, span.start);
+        Some((at.line, at.column))
     }
 
     /// Line and column of the model statement a part of the system comes from.

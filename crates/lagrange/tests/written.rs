@@ -73,7 +73,7 @@ fn a_run_writes_its_csv_events_summary_and_plot() {
     assert!(out.is_empty());
     let csv = std::fs::read_to_string(dir.join("run.csv")).unwrap();
     assert!(
-        csv.starts_with("t,theta,theta_d,energy_error,constraint_drift\n"),
+        csv.starts_with("t,theta,theta_d,energy_error,constraint_drift,pivot_x,pivot_y,pivot_z\n"),
         "{csv}"
     );
     assert_eq!(csv.lines().count() as u64, written.streamed.tally.rows + 1);
