@@ -11,6 +11,8 @@ use mechanics::equilibria::Values;
 use mechanics::Equations;
 use serde_json::{json, Value};
 
+use report::equilibria::six;
+
 use crate::chart::{ChartLagrangian, Pole};
 
 /// The linearization `M δs̈ + K δs = 0` in a pole's regular chart.
@@ -188,13 +190,4 @@ pub(crate) fn chart_modes_json(modes: &[Option<ChartModes>], only: Option<usize>
         })
         .collect();
     Value::Array(entries)
-}
-
-/// Six decimals, never `-0.000000`.
-fn six(v: f64) -> String {
-    let text = format!("{v:.6}");
-    match text.strip_prefix('-') {
-        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_owned(),
-        _ => text,
-    }
 }

@@ -245,7 +245,8 @@ pub(crate) fn stability_word(s: Option<bool>) -> &'static str {
 }
 
 /// A number to six decimals, without the minus of a value that rounds to zero ("-0.000000").
-fn six(v: f64) -> String {
+#[must_use]
+pub fn six(v: f64) -> String {
     let text = format!("{v:.6}");
     match text.strip_prefix('-') {
         Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_owned(),
