@@ -82,6 +82,15 @@ pub fn json_text(value: &Value) -> String {
     text + "\n"
 }
 
+/// Kane's equations in `format`, as `lagrange eom --method kane` writes them.
+#[must_use]
+pub fn kane_written(eom: &crate::KaneEom, format: ResultFormat) -> String {
+    match format {
+        ResultFormat::Text => crate::kane_text(eom),
+        ResultFormat::Json => json_text(&crate::kane_json(eom)),
+    }
+}
+
 /// A result that is written as text or as JSON.
 pub trait Written {
     /// The result as text for people.
@@ -181,11 +190,7 @@ impl Analysis {
         if method == crate::Method::Lagrange {
             return self.equations_written(format);
         }
-        let eom = self.kane_equations()?;
-        Ok(match format {
-            ResultFormat::Text => crate::kane_text(&eom),
-            ResultFormat::Json => json_text(&crate::kane_json(&eom)),
-        })
+        Ok(kane_written(&self.kane_equations()?, format))
     }
 
     /// `solution` in `format`, as `lagrange solve` writes it.

@@ -46,6 +46,21 @@ pub enum KaneEom {
     },
 }
 
+impl KaneEom {
+    /// Whether Lagrange's equations, projected on the speeds, differ from Kane's: two
+    /// derivations of one system that disagree are a bug of lagrange.
+    #[must_use]
+    pub fn disagrees(&self) -> bool {
+        matches!(
+            self,
+            KaneEom::Symbolic {
+                agreement: Ok(Agreement::Differs { .. }),
+                ..
+            }
+        )
+    }
+}
+
 impl Analysis {
     /// Kane's equations of the model (see [`KaneEom`]).
     ///

@@ -96,7 +96,9 @@ pub use equilibria::{Deviations, Equilibria, EquilibriumSweep, Search, SweepStep
 pub use equilibria_conditions::Conditions as StabilityConditions;
 pub use error::{Error, ErrorKind, ModelErrors, OneRunOnly};
 pub use floquet::{Floquet, FloquetChart, FloquetError, FloquetOptions};
-pub use formats::{json_text, Dialect, Linearized, ReportFormat, ResultFormat, Written};
+pub use formats::{
+    json_text, kane_written, Dialect, Linearized, ReportFormat, ResultFormat, Written,
+};
 pub use kane_eom::{kane_json, kane_text, KaneEom, Method};
 pub use output::{FileFormat, Output, SolutionOutput};
 pub use projection::ProjectedReaction;

@@ -89,6 +89,16 @@ fn a_changed_forcing_is_reported_as_a_difference() {
             row: 1
         }
     );
+    // What `eom --method kane` then prints, and the exit code it gives (docs/cli.md: 4).
+    let differing = KaneEom::Symbolic {
+        equations: Box::new(eq),
+        agreement: Ok(found),
+    };
+    assert!(differing.disagrees());
+    let text = lagrange::kane_written(&differing, ResultFormat::Text);
+    assert!(text.contains("DIFFER in the forcing, equation 2"), "{text}");
+    let shipped = a.kane_equations().expect("Kane's equations of the disk");
+    assert!(!shipped.disagrees());
 }
 
 #[test]

@@ -15,7 +15,20 @@ pub fn run(
     set: &[String],
 ) -> Result<Exit, Failure> {
     let analysis = super::load(path, set)?;
-    let text = analysis.equations_written_by(format, method);
-    print(text.map_err(|e| Failure::of(e, path))?)?;
-    Ok(Exit::Success)
+    if method == Method::Lagrange {
+        let text = analysis.equations_written(format);
+        print(text.map_err(|e| Failure::of(e, path))?)?;
+        return Ok(Exit::Success);
+    }
+    let kane = analysis
+        .kane_equations()
+        .map_err(|e| Failure::of(e, path))?;
+    print(lagrange::kane_written(&kane, format))?;
+    // Kane's and Lagrange's equations that differ are a bug in lagrange, and the exit code
+    // says so (as for reactions).
+    Ok(if kane.disagrees() {
+        Exit::Internal
+    } else {
+        Exit::Success
+    })
 }
