@@ -38,7 +38,8 @@ impl Reactions {
     #[must_use]
     pub fn to_text(&self) -> String {
         if let Some(values) = &self.numeric {
-            return format!("{NUMERIC_SENTENCE};\n{}", values.to_text());
+            let sentence = NUMERIC_SENTENCE.replacen("the", "The", 1);
+            return format!("{sentence}.\n{}", values.to_text());
         }
         let texts: Vec<String> = (self.reactions.iter().zip(&self.unilateral))
             .map(|(r, u)| report::reaction_text(r, u.as_ref()))
