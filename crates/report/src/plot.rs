@@ -330,38 +330,61 @@ fn draw_histories<DB: DrawingBackend>(
     rows: &[Vec<f64>],
     n: usize,
 ) -> DrawResult<DB> {
-    let t_range = time_range(rows);
-    let coordinates: Vec<Vec<(f64, f64)>> = (1..=n).map(|k| series(rows, k)).collect();
-    let (lo, hi) = bounds(coordinates.iter().flatten().map(|p| p.1));
-    let mut chart = ChartBuilder::on(top)
+    let lines: Vec<Vec<(f64, f64)>> = (1..=n).map(|k| series(rows, k)).collect();
+    let names: Vec<String> = (1..=n).map(|k| display_name(&columns[k])).collect();
+    let panel = LinesPanel {
+        caption: "coordinates",
+        y_desc: "q (lengths in m, angles in rad)",
+        lines: &lines,
+        names: &names,
+    };
+    draw_lines(top, time_range(rows), &panel)
+}
+
+/// Lines against time on one panel, with their names in a legend.
+struct LinesPanel<'a> {
+    caption: &'a str,
+    y_desc: &'a str,
+    lines: &'a [Vec<(f64, f64)>],
+    names: &'a [String],
+}
+
+/// Draws `panel`'s lines over `t_range`, the legend in a corner (not over the middle of the
+/// curves).
+fn draw_lines<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    t_range: (f64, f64),
+    panel: &LinesPanel<'_>,
+) -> DrawResult<DB> {
+    let (lo, hi) = bounds(panel.lines.iter().flatten().map(|p| p.1));
+    let mut chart = ChartBuilder::on(area)
         .margin(12)
-        .caption("coordinates", (FAMILY, 20))
+        .caption(panel.caption, (FAMILY, 20))
         .x_label_area_size(40)
         .y_label_area_size(70)
         .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
-    let (t_span, q_span) = (t_range.1 - t_range.0, hi - lo);
+    let (t_span, y_span) = (t_range.1 - t_range.0, hi - lo);
     chart
         .configure_mesh()
         .x_desc("t (s)")
-        .y_desc("q (lengths in m, angles in rad)")
+        .y_desc(panel.y_desc)
         .x_label_formatter(&|v| tick(*v, t_span))
-        .y_label_formatter(&|v| tick(*v, q_span))
+        .y_label_formatter(&|v| tick(*v, y_span))
         .label_style((FAMILY, 14))
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
-    for (k, points) in coordinates.iter().enumerate() {
+    for (k, (points, name)) in panel.lines.iter().zip(panel.names).enumerate() {
         let color = PALETTE[k % PALETTE.len()];
         chart
             .draw_series(LineSeries::new(
                 points.iter().copied(),
                 color.stroke_width(1),
             ))?
-            .label(display_name(&columns[k + 1]))
+            .label(name.clone())
             .legend(move |(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
             });
     }
-    // In a corner, not over the middle of the curves.
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
@@ -369,7 +392,6 @@ fn draw_histories<DB: DrawingBackend>(
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(200, 200, 200))
         .draw()?;
-
     Ok(())
 }
 
@@ -506,11 +528,10 @@ fn draw_energy<DB: DrawingBackend>(
 
 /// The reactions against time (evaluated numerically at each row's state), one line each.
 fn draw_reactions<DB: DrawingBackend>(
-    panel: &DrawingArea<DB, Shift>,
+    area: &DrawingArea<DB, Shift>,
     rows: &[Vec<f64>],
     reactions: &Reactions<'_>,
 ) -> DrawResult<DB> {
-    let t_range = time_range(rows);
     let lines: Vec<Vec<(f64, f64)>> = (0..reactions.names.len())
         .map(|k| {
             rows.iter()
@@ -519,43 +540,13 @@ fn draw_reactions<DB: DrawingBackend>(
                 .collect()
         })
         .collect();
-    let (lo, hi) = bounds(lines.iter().flatten().map(|p| p.1));
-    let mut chart = ChartBuilder::on(panel)
-        .margin(12)
-        .caption("reactions (inertial components, multipliers)", (FAMILY, 20))
-        .x_label_area_size(40)
-        .y_label_area_size(70)
-        .build_cartesian_2d(t_range.0..t_range.1, lo..hi)?;
-    let (t_span, y_span) = (t_range.1 - t_range.0, hi - lo);
-    chart
-        .configure_mesh()
-        .x_desc("t (s)")
-        .y_desc("N, N·m, or λ")
-        .x_label_formatter(&|v| tick(*v, t_span))
-        .y_label_formatter(&|v| tick(*v, y_span))
-        .label_style((FAMILY, 14))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()?;
-    for (k, points) in lines.iter().enumerate() {
-        let color = PALETTE[k % PALETTE.len()];
-        chart
-            .draw_series(LineSeries::new(
-                points.iter().copied(),
-                color.stroke_width(1),
-            ))?
-            .label(reactions.names[k].clone())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(1))
-            });
-    }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font((FAMILY, 15))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(200, 200, 200))
-        .draw()?;
-    Ok(())
+    let panel = LinesPanel {
+        caption: "reactions (inertial components, multipliers)",
+        y_desc: "N, N·m, or λ",
+        lines: &lines,
+        names: reactions.names,
+    };
+    draw_lines(area, time_range(rows), &panel)
 }
 
 /// The range of the finite values, widened by 5% (and to a unit range around a constant) so
