@@ -91,17 +91,19 @@ pub fn simulation_section(run: Result<&RunReport<'_>, String>) -> Section {
         };
         let energy = match run.balance {
             Some((balance, work)) => format!(
-                "The inputs did work W = {} on the system; the energy balance (E − E₀ − W)/|E₀|                  is {balance:.2e} (the energy itself changed by {:.2e} of |E₀|)",
+                "The inputs did work W = {} on the system; the energy balance (E − E₀ − W)/|E₀| \
+                 is {} (the energy itself changed by {} of |E₀|)",
                 signed(work),
-                column(2)
+                scientific(balance),
+                scientific(column(2))
             ),
-            None => format!("Relative energy error {:.2e}", column(2)),
+            None => format!("Relative energy error {}", scientific(column(2))),
         };
         section.paragraph(format!(
-            "At t = {:.6}: {}. {energy}, constraint drift {:.2e}.",
+            "At t = {:.6}: {}. {energy}, constraint drift {}.",
             last[0],
             state.join(", "),
-            column(1)
+            scientific(column(1))
         ));
     }
     match &run.end {
@@ -168,6 +170,13 @@ fn display_name(column: &str) -> String {
 /// write it.
 fn signed(v: f64) -> String {
     format!("{v:.6}").replace('-', "−")
+}
+
+/// A small number in three digits, in E notation (`-1.61e-10`: plain text, which the
+/// Markdown and LaTeX renderers leave as it is, unlike a true minus sign that they set as
+/// mathematics).
+fn scientific(v: f64) -> String {
+    format!("{v:.2e}")
 }
 
 /// The names of the state columns: the coordinates, then their rates.
