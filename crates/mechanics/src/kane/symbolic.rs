@@ -186,7 +186,7 @@ fn distinct_nodes(roots: impl Iterator<Item = Expr>, limit: usize) -> usize {
 
 /// `x` as an exact number where it is one with a small denominator (the constants of the
 /// derivation: 0, 1, ½, the integer powers), a float otherwise.
-fn exact_number(x: f64) -> Expr {
+pub(super) fn exact_number(x: f64) -> Expr {
     for den in [1_i64, 2, 3, 4, 6, 8, 12, 16] {
         let scaled = x * den as f64;
         if scaled.fract() == 0.0 && scaled.abs() < 1e15 {
