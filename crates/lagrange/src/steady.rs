@@ -196,7 +196,7 @@ impl Analysis {
             };
             let found = out.len();
             for oscillatory in [false, true] {
-                let (fa, fb) = (leading(la, oscillatory), leading(lb, oscillatory));
+                let (fa, fb) = (leading(la, oscillatory, true), leading(lb, oscillatory, true));
                 if let (Some((fa, sa)), Some((fb, sb))) = (fa, fb) {
                     if sa != 0 && sb != 0 && sa != sb {
                         out.push(self.bisect(
@@ -232,7 +232,9 @@ impl Analysis {
             }
             let m = 0.5 * (a + b);
             let lin = self.linearize_at(system, parameter, m)?;
-            let Some((fm, _)) = leading(&lin, oscillatory) else {
+            // Near a real eigenvalue through zero the family's test would count it as one of
+            // the family's zeros: the bisection reads every eigenvalue of the coupled states.
+            let Some((fm, _)) = leading(&lin, oscillatory, false) else {
                 break;
             };
             if (fm < 0.0) == (fa < 0.0) {
@@ -404,12 +406,13 @@ impl Analysis {
 /// family of steady motions (the decoupled states' zeros are not among them, and as many of
 /// the eigenvalues nearest zero as the family has coupled directions are left out), with its
 /// sign: `0` when it is on the imaginary axis to rounding ([`SteadySpectrum::axis_tolerance`]).
-fn leading(lin: &SteadyLinearization, oscillatory: bool) -> Option<(f64, i8)> {
+/// With `aside` false, every eigenvalue of the coupled states counts and the sign is exact.
+fn leading(lin: &SteadyLinearization, oscillatory: bool, aside: bool) -> Option<(f64, i8)> {
     let scale = lin
         .eigenvalues
         .iter()
         .fold(1.0_f64, |m, (re, im)| m.max(re.hypot(*im)));
-    let spectrum = lin.spectrum().ok();
+    let spectrum = if aside { lin.spectrum().ok() } else { None };
     let family = spectrum
         .as_ref()
         .map_or(0, |s| s.family.iter().filter(|f| **f).count())
