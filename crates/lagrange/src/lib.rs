@@ -114,7 +114,9 @@ pub use simulate::{
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
 pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};
-pub use steady_condition::{condition_json as steady_condition_json, condition_lines as steady_condition_lines};
+pub use steady_condition::{
+    condition_json as steady_condition_json, condition_lines as steady_condition_lines,
+};
 pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;

@@ -54,6 +54,10 @@ pub struct CanonicalForm {
     pub k0: Vec<Vec<f64>>,
     /// `K₂`.
     pub k2: Vec<Vec<f64>>,
+    /// The speeds eliminated (not shape rates, whose linearized equations integrate to a
+    /// combination of the shape coordinates, `ψ̇ = −8 θ`), each with its coefficients on
+    /// the shape coordinates at the speed of the form.
+    pub eliminated: Vec<(String, Vec<f64>)>,
 }
 
 impl Analysis {
@@ -196,7 +200,10 @@ impl Analysis {
             };
             let found = out.len();
             for oscillatory in [false, true] {
-                let (fa, fb) = (leading(la, oscillatory, true), leading(lb, oscillatory, true));
+                let (fa, fb) = (
+                    leading(la, oscillatory, true),
+                    leading(lb, oscillatory, true),
+                );
                 if let (Some((fa, sa)), Some((fb, sb))) = (fa, fb) {
                     if sa != 0 && sb != 0 && sa != sb {
                         out.push(self.bisect(
@@ -353,9 +360,7 @@ impl Analysis {
         let mass = moving_form.mass;
         let c1 = pick(&|i, j| moving_form.damping[i][j] / v);
         let k0 = pick(&|i, j| still_form.stiffness[i][j] / g);
-        let k2 = pick(&|i, j| {
-            (moving_form.stiffness[i][j] - still_form.stiffness[i][j]) / (v * v)
-        });
+        let k2 = pick(&|i, j| (moving_form.stiffness[i][j] - still_form.stiffness[i][j]) / (v * v));
         Ok(CanonicalForm {
             coordinates: moving.shape.clone(),
             speed: speed.to_string(),
@@ -363,6 +368,7 @@ impl Analysis {
             c1,
             k0,
             k2,
+            eliminated: moving_form.eliminated,
         })
     }
 
@@ -419,7 +425,9 @@ fn leading(lin: &SteadyLinearization, oscillatory: bool, aside: bool) -> Option<
         .saturating_sub(lin.decoupled.len());
     let mut by_size: Vec<(f64, f64)> = lin.eigenvalues.clone();
     by_size.sort_by(|x, y| x.0.hypot(x.1).total_cmp(&y.0.hypot(y.1)));
-    let tolerance = spectrum.as_ref().map_or(0.0, SteadySpectrum::axis_tolerance);
+    let tolerance = spectrum
+        .as_ref()
+        .map_or(0.0, SteadySpectrum::axis_tolerance);
     let re = by_size
         .iter()
         .skip(family)
@@ -451,6 +459,7 @@ struct ShapeEquations {
     mass: Vec<Vec<f64>>,
     damping: Vec<Vec<f64>>,
     stiffness: Vec<Vec<f64>>,
+    eliminated: Vec<(String, Vec<f64>)>,
 }
 
 /// The rows of the shape coordinates' speeds (`rows`, one per shape coordinate) with every
@@ -474,6 +483,7 @@ fn shape_equations(lin: &SteadyLinearization, rows: &[usize]) -> Option<ShapeEqu
         .map(|r| rows.iter().map(|c| lin.damping[*r][*c]).collect())
         .collect();
     let mut stiffness: Vec<Vec<f64>> = rows.iter().map(|r| lin.stiffness[*r].clone()).collect();
+    let mut eliminated = Vec::new();
     for c in (0..lin.speeds.len()).filter(|c| !rows.contains(c)) {
         let row = a.get(s + c)?;
         if row.iter().all(|x| x.abs() <= tiny) {
@@ -493,11 +503,13 @@ fn shape_equations(lin: &SteadyLinearization, rows: &[usize]) -> Option<ShapeEqu
                 stiffness[i][j] += lin.damping[rows[i]][c] * coefficients[j];
             }
         }
+        eliminated.push((format!("{}_d", lin.speeds[c]), coefficients));
     }
     Some(ShapeEquations {
         mass,
         damping,
         stiffness,
+        eliminated,
     })
 }
 

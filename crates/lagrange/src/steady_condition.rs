@@ -82,6 +82,51 @@ impl Analysis {
         ((value - in_force).abs() <= 1e-12 * value.abs().max(1.0)).then_some(expr)
     }
 
+    /// The solution's section on the steady motion of the `initial` statement: the verdict
+    /// relative to the family of steady motions, why, the eigenvalues, and the condition in
+    /// the parameters where there is one.
+    pub(crate) fn steady_section(&self) -> report::document::Section {
+        let mut section = report::document::Section::new("Steady motion and its stability", 2);
+        let lin = match self.steady_linearization() {
+            Ok(lin) => lin,
+            Err(why) => {
+                section.paragraph(format!("Not analysed: {why}."));
+                return section;
+            }
+        };
+        let spectrum = match lin.spectrum() {
+            Ok(s) => s,
+            Err(why) => {
+                section.paragraph(format!("Not analysed: {why}."));
+                return section;
+            }
+        };
+        let eigenvalues: Vec<String> = spectrum
+            .eigenvalues
+            .iter()
+            .map(|(re, im)| {
+                format!(
+                    "{:.6} {} {:.6} i",
+                    re + 0.0,
+                    if *im < 0.0 { '-' } else { '+' },
+                    im.abs()
+                )
+            })
+            .collect();
+        section.paragraph(format!(
+            "Linearized about the steady motion of the initial values by Kane's method (states {}): \
+             eigenvalues {}. Verdict: {}; {}.",
+            lin.states.join(", "),
+            eigenvalues.join(", "),
+            spectrum.verdict.words(),
+            crate::steady_print::verdict_reason(&spectrum)
+        ));
+        if let Ok(Some(c)) = self.steady_condition(&lin, &spectrum) {
+            section.paragraph(format!("{}.", condition_lines(&c).join("; ")));
+        }
+        section
+    }
+
     /// The parameters whose values are positive.
     fn positive_parameter_names(&self) -> Vec<String> {
         let Ok(values) = self.values() else {

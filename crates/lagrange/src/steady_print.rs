@@ -32,8 +32,7 @@ pub fn is_stable(lin: &SteadyLinearization) -> bool {
 
 /// The verdict's short name (`asymptotic`, `marginal`, `unstable`).
 fn verdict_short(lin: &SteadyLinearization) -> &'static str {
-    lin.spectrum()
-        .map_or("unstable", |s| s.verdict.short())
+    lin.spectrum().map_or("unstable", |s| s.verdict.short())
 }
 
 /// Why the verdict is what it is, in a course's words.
@@ -127,6 +126,7 @@ pub fn steady_json(
                 "C1": c.c1,
                 "K0": c.k0,
                 "K2": c.k2,
+                "eliminated": c.eliminated.iter().map(|(s, a)| json!({"speed": s, "coefficients": a})).collect::<Vec<_>>(),
             }),
         );
     }
@@ -186,7 +186,11 @@ pub fn steady_text(
             for (re, im) in &lin.eigenvalues {
                 out.push_str(&format!("  {}\n", complex_text(*re, *im)));
             }
-            out.push_str(if is_stable(lin) { "stable\n" } else { "unstable\n" });
+            out.push_str(if is_stable(lin) {
+                "stable\n"
+            } else {
+                "unstable\n"
+            });
         }
     }
     if let Some(c) = extras.condition {
@@ -200,6 +204,18 @@ pub fn steady_text(
             c.coordinates.join(", "),
             v = c.speed
         ));
+        for (speed, coefficients) in &c.eliminated {
+            let terms: Vec<String> = coefficients
+                .iter()
+                .zip(&c.coordinates)
+                .map(|(a, q)| format!("{} {q}", a + 0.0))
+                .collect();
+            out.push_str(&format!(
+                "  {speed} = {} (+ a constant fixed by the family): its linearized equation is a \
+                 combination of shape rates, integrated and eliminated\n",
+                terms.join(" + ")
+            ));
+        }
         for (name, m) in [("M", &c.mass), ("C1", &c.c1), ("K0", &c.k0), ("K2", &c.k2)] {
             out.push_str(&matrix_text(name, m));
         }
@@ -208,7 +224,9 @@ pub fn steady_text(
 }
 
 fn complex_text(re: f64, im: f64) -> String {
-    // `+ 0.0` turns −0 into 0, which is never printed.
+    // Parts below the last printed digit print as 0, not −0.
+    let shown = |x: f64| if x.abs() < 5e-15 { 0.0 } else { x };
+    let (re, im) = (shown(re), shown(im));
     format!(
         "{:.14} {} {:.14} i",
         re + 0.0,

@@ -49,7 +49,9 @@ const HOOP: &str = "m*R^2/2, m*R^2, m*R^2/2";
 const GENERAL: &str = "I_a, I_c, I_a";
 
 fn condition(a: &Analysis) -> StabilityCondition {
-    let lin = a.steady_linearization().expect("upright rolling linearizes");
+    let lin = a
+        .steady_linearization()
+        .expect("upright rolling linearizes");
     let spectrum = lin.spectrum().expect("its spectrum");
     a.steady_condition(&lin, &spectrum)
         .expect("the symbolic route runs")
@@ -134,28 +136,51 @@ fn on_each_side_of_the_boundary_the_condition_and_the_eigenvalues_agree() {
         for (factor, stable) in [(0.9, false), (1.1, true)] {
             let v = factor * critical;
             let mut a = disk(GENERAL, ", I_a = 0.07, I_c = 0.11", 2.0);
-            for (name, value) in [("m", m), ("R", r), ("g", g), ("I_a", ia), ("I_c", ic), ("v", v)]
-            {
+            for (name, value) in [
+                ("m", m),
+                ("R", r),
+                ("g", g),
+                ("I_a", ia),
+                ("I_c", ic),
+                ("v", v),
+            ] {
                 a.set_value(name, value).expect("a parameter");
             }
             let env = |s: Symbol| {
-                [("m", m), ("R", r), ("g", g), ("I_a", ia), ("I_c", ic), ("v", v)]
-                    .iter()
-                    .find(|(n, _)| *n == s.name())
-                    .map(|(_, x)| *x)
+                [
+                    ("m", m),
+                    ("R", r),
+                    ("g", g),
+                    ("I_a", ia),
+                    ("I_c", ic),
+                    ("v", v),
+                ]
+                .iter()
+                .find(|(n, _)| *n == s.name())
+                .map(|(_, x)| *x)
             };
             let holds = d.eval(&env).expect("evaluates") > 0.0;
             let lin = a.steady_linearization().expect("linearizes");
             let verdict = lin.spectrum().expect("spectrum").verdict;
-            assert_eq!(holds, stable, "the condition at {factor} × the critical speed");
-            assert_eq!(verdict.is_stable(), stable, "{verdict:?} at {factor} × critical");
+            assert_eq!(
+                holds, stable,
+                "the condition at {factor} × the critical speed"
+            );
+            assert_eq!(
+                verdict.is_stable(),
+                stable,
+                "{verdict:?} at {factor} × critical"
+            );
         }
     }
 }
 
 #[test]
 fn at_two_metres_per_second_marginally_stable_and_at_one_unstable() {
-    for (v, expected) in [(2.0, SteadyVerdict::Marginal), (1.0, SteadyVerdict::Unstable)] {
+    for (v, expected) in [
+        (2.0, SteadyVerdict::Marginal),
+        (1.0, SteadyVerdict::Unstable),
+    ] {
         let lin = disk(UNIFORM, "", v)
             .steady_linearization()
             .expect("linearizes");
@@ -175,7 +200,10 @@ fn the_sweep_finds_one_change_at_the_square_root_of_g_r_over_three() {
     let changes = a.steady_crossings(&sweep).expect("its changes");
     assert_eq!(changes.len(), 1, "{changes:?}");
     let exact = (9.81_f64 * 0.5 / 3.0).sqrt();
-    assert!((changes[0].at - exact).abs() < 1e-8, "{changes:?} vs {exact}");
+    assert!(
+        (changes[0].at - exact).abs() < 1e-8,
+        "{changes:?} vs {exact}"
+    );
     assert_eq!(changes[0].kind, ChangeKind::Coalescence);
 }
 

@@ -28,9 +28,7 @@ use super::steady::SteadyLinearization;
 use super::verdict::SteadySpectrum;
 use super::KaneError;
 use crate::parameter_signs::read_all;
-use crate::stability_condition::{
-    Boundary, ConditionCriterion, StabilityCondition, Verdict,
-};
+use crate::stability_condition::{Boundary, ConditionCriterion, StabilityCondition, Verdict};
 
 /// The largest state (shape coordinates and speeds) whose characteristic polynomial is
 /// formed symbolically.
@@ -116,7 +114,9 @@ impl KaneSystem {
             return Ok(None);
         };
         let family = spectrum.family.iter().filter(|f| **f).count();
-        if all.iter().take(family).any(|c| !c.is_zero()) || all.get(family).is_none_or(|c| c.is_zero()) {
+        if all.iter().take(family).any(|c| !c.is_zero())
+            || all.get(family).is_none_or(|c| c.is_zero())
+        {
             return Ok(None);
         }
         let rest = &all[family..];
@@ -190,9 +190,7 @@ fn steady_speeds(
     if rows.len() != speeds.len() {
         return None;
     }
-    let solution = Matrix::from_rows(rows)?
-        .solve(&Matrix::column(rhs))
-        .ok()?;
+    let solution = Matrix::from_rows(rows)?.solve(&Matrix::column(rhs)).ok()?;
     Some(
         speeds
             .iter()
