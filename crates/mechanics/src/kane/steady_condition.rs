@@ -191,13 +191,11 @@ fn steady_speeds(
         return None;
     }
     let solution = Matrix::from_rows(rows)?.solve(&Matrix::column(rhs)).ok()?;
-    Some(
-        speeds
-            .iter()
-            .enumerate()
-            .map(|(k, u)| Some((Expr::from_symbol(*u), solution.get(k, 0)?.normal())))
-            .collect::<Option<Vec<_>>>()?,
-    )
+    speeds
+        .iter()
+        .enumerate()
+        .map(|(k, u)| Some((Expr::from_symbol(*u), solution.get(k, 0)?.normal())))
+        .collect()
 }
 
 /// The matrix `[[λ I − ∂r_S/∂q_S, −∂r_S/∂u], [−∂f_r/∂q_S, λ M_r − ∂f_r/∂u]]` at the steady
