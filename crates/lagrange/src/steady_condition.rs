@@ -104,14 +104,7 @@ impl Analysis {
         let eigenvalues: Vec<String> = spectrum
             .eigenvalues
             .iter()
-            .map(|(re, im)| {
-                format!(
-                    "{:.6} {} {:.6} i",
-                    re + 0.0,
-                    if *im < 0.0 { '-' } else { '+' },
-                    im.abs()
-                )
-            })
+            .map(|(re, im)| crate::steady_print::complex_text(*re, *im, 6))
             .collect();
         section.paragraph(format!(
             "Linearized about the steady motion of the initial values by Kane's method (states {}): \

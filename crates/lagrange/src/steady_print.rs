@@ -184,7 +184,7 @@ pub fn steady_text(
         None => {
             out.push_str("\neigenvalues:\n");
             for (re, im) in &lin.eigenvalues {
-                out.push_str(&format!("  {}\n", complex_text(*re, *im)));
+                out.push_str(&format!("  {}\n", complex_text(*re, *im, 14)));
             }
             out.push_str(if is_stable(lin) {
                 "stable\n"
@@ -223,13 +223,13 @@ pub fn steady_text(
     out
 }
 
-fn complex_text(re: f64, im: f64) -> String {
+pub(crate) fn complex_text(re: f64, im: f64, digits: usize) -> String {
     // Parts below the last printed digit print as 0, not −0.
-    let shown = |x: f64| if x.abs() < 5e-15 { 0.0 } else { x };
+    let last = 0.5 * 10_f64.powi(-i32::try_from(digits).unwrap_or(14));
+    let shown = |x: f64| if x.abs() < last { 0.0 } else { x };
     let (re, im) = (shown(re), shown(im));
     format!(
-        "{:.14} {} {:.14} i",
-        re + 0.0,
+        "{re:.digits$} {} {:.digits$} i",
         if im < 0.0 { '-' } else { '+' },
         im.abs()
     )
@@ -246,7 +246,7 @@ fn spectrum_text(s: &SteadySpectrum) -> String {
         } else {
             ""
         };
-        out.push_str(&format!("  {}{note}\n", complex_text(*re, *im)));
+        out.push_str(&format!("  {}{note}\n", complex_text(*re, *im, 14)));
     }
     out.push_str(&format!("{}\n", s.verdict.words()));
     out.push_str(&format!("  why: {}\n", verdict_reason(s)));
