@@ -53,7 +53,7 @@ pub struct ExactSteadyMotion {
 impl KaneSystem {
     /// The stability condition of the steady motion `motion` in the parameters (module doc),
     /// `None` where the route does not apply: holonomically dependent coordinates, a state
-    /// over [`MAX_STATES`], steady speeds the given rates do not fix, a family whose zero roots
+    /// over six states, steady speeds the given rates do not fix, a family whose zero roots
     /// are not those of the numeric linearization `lin`, or a polynomial beyond the table.
     ///
     /// # Errors
