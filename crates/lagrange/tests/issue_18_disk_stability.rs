@@ -220,3 +220,23 @@ fn the_canonical_form_eliminates_the_heading_rate() {
     assert!(close(form.k0[0][0], -0.5), "{form:?}");
     assert!(close(form.k2[0][0], 3.0), "{form:?}");
 }
+
+#[test]
+fn the_solution_states_the_verdict_and_the_condition() {
+    let solution = disk(UNIFORM, "", 2.0)
+        .solution(None)
+        .expect("the disk's solution");
+    // The document wraps its paragraphs: compare with the line breaks as spaces.
+    let text = solution.document.to_text().replace('\n', " ");
+    assert!(text.contains("Steady motion and its stability"), "{text}");
+    assert!(
+        text.contains(
+            "Verdict: stable to first order (marginally: eigenvalues on the imaginary axis)"
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("stable to first order iff 3 v² > R g"),
+        "{text}"
+    );
+}
