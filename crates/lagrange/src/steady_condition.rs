@@ -174,7 +174,16 @@ pub fn condition_json(c: &StabilityCondition) -> Value {
 
 /// `c₀ + c₁ λ + …` as one expression.
 fn polynomial(c: &[Expr]) -> Expr {
-    let lambda = Expr::symbol("lambda");
+    // A symbol none of the coefficients holds (a parameter may be called `lambda`).
+    let mut names: Vec<String> = Vec::new();
+    let mut stack: Vec<Expr> = c.to_vec();
+    while let Some(e) = stack.pop() {
+        if let cas::Node::Symbol(s) = e.node() {
+            names.push(s.name().to_owned());
+        }
+        stack.extend_from_slice(e.children());
+    }
+    let lambda = mechanics::kane::fresh_lambda(&names);
     Expr::add_all(c.iter().enumerate().map(|(k, ck)| {
         let power = i64::try_from(k).unwrap_or(i64::MAX);
         *ck * lambda.powi(power)

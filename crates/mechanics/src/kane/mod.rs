@@ -39,7 +39,7 @@ pub use program::{Program, Variables};
 pub use rank::constraint_rank;
 pub use scalar::{Dual, Scalar};
 pub use steady::{SteadyLinearization, SteadyMotion};
-pub use steady_condition::{exact_value, ExactSteadyMotion};
+pub use steady_condition::{exact_value, fresh_lambda, ExactSteadyMotion};
 pub use symbolic::{KaneEquations, Sym, MAX_NODES, MAX_PROGRAM};
 pub use verdict::{SteadySpectrum, SteadyVerdict};
 

@@ -101,7 +101,7 @@ impl KaneSystem {
             return Ok(None);
         };
         let at: Vec<(Expr, Expr)> = at_q.iter().chain(&at_u).copied().collect();
-        let lambda = Expr::symbol("lambda");
+        let lambda = fresh_lambda(&self.values);
         let shape_symbols: Vec<Symbol> = shape.iter().map(|j| coordinates[*j]).collect();
         let pencil = characteristic_pencil(&eq, &shape, &shape_symbols, &speeds, &at, lambda);
         let polynomial = cas::limited(|| {
@@ -119,42 +119,60 @@ impl KaneSystem {
         {
             return Ok(None);
         }
-        let rest = &all[family..];
-        let Some((criterion, tests)) = criterion_tests(rest) else {
-            return Ok(None);
-        };
-        let verdict = match read_all(&tests, positive) {
-            None => Verdict::Never,
-            Some(v) if v.is_empty() => Verdict::Always,
-            Some(v) => Verdict::When(v),
-        };
-        let boundaries = match &verdict {
-            Verdict::When(all) => all
-                .iter()
-                .map(|relation| Boundary {
-                    relation: *relation,
-                    family: false,
-                })
-                .collect(),
-            _ => Vec::new(),
-        };
         let mass = eq
             .mass
             .iter()
             .map(|row| row.iter().map(|e| e.subs(&at).normal()).collect())
             .collect();
-        Ok(Some(StabilityCondition {
-            coordinates: lin.shape.clone(),
-            mass,
-            gyroscopic: Vec::new(),
-            stiffness: Vec::new(),
-            criterion,
-            tests,
-            verdict,
-            boundaries,
-            characteristic: rest.to_vec(),
-        }))
+        Ok(condition_of(&all[family..], lin, mass, positive))
     }
+}
+
+/// The symbol `λ` of the characteristic polynomial: `lambda`, or with an underscore added
+/// until no named value has its name.
+#[must_use]
+pub fn fresh_lambda(names: &[String]) -> Expr {
+    let mut name = String::from("lambda");
+    while names.contains(&name) {
+        name.push('_');
+    }
+    Expr::symbol(&name)
+}
+
+/// The condition read off the polynomial `rest` (the family's zero roots divided out).
+fn condition_of(
+    rest: &[Expr],
+    lin: &SteadyLinearization,
+    mass: Vec<Vec<Expr>>,
+    positive: &dyn Fn(Symbol) -> bool,
+) -> Option<StabilityCondition> {
+    let (criterion, tests) = criterion_tests(rest)?;
+    let verdict = match read_all(&tests, positive) {
+        None => Verdict::Never,
+        Some(v) if v.is_empty() => Verdict::Always,
+        Some(v) => Verdict::When(v),
+    };
+    let boundaries = match &verdict {
+        Verdict::When(all) => all
+            .iter()
+            .map(|relation| Boundary {
+                relation: *relation,
+                family: false,
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    Some(StabilityCondition {
+        coordinates: lin.shape.clone(),
+        mass,
+        gyroscopic: Vec::new(),
+        stiffness: Vec::new(),
+        criterion,
+        tests,
+        verdict,
+        boundaries,
+        characteristic: rest.to_vec(),
+    })
 }
 
 /// The steady values of the speeds: the given rates and the shape coordinates' zero rates,
