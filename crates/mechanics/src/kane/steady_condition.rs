@@ -72,7 +72,18 @@ impl KaneSystem {
         let sample: Vec<f64> = (0..self.coordinates.len())
             .map(|k| 0.31 + 0.137 * ((k * 7 + 3) % 11) as f64)
             .collect();
-        let eq = self.symbolic(&sample, values)?;
+        // The speeds as the numeric linearization chose them, at the steady configuration
+        // with the cyclic coordinates' rates preferred as dependent (the contact point's
+        // `ẋ`, `ẏ`): chosen at the generic sample instead, the pivots follow the sizes there
+        // and may make a heading rate dependent, which ties the equations to the heading.
+        let cyclic: Vec<bool> = self
+            .coordinates
+            .iter()
+            .map(|c| lin.cyclic.contains(c))
+            .collect();
+        let all = vec![true; cyclic.len()];
+        let split = self.split(&lin.configuration, 0.0, values, &cyclic, &all)?;
+        let eq = self.symbolic_with(split, &sample, values)?;
         let shape: Vec<usize> = lin
             .shape
             .iter()

@@ -72,6 +72,27 @@ impl KaneSystem {
             });
         }
         let split = self.eom_split(q, values)?;
+        self.symbolic_with(split, q, values)
+    }
+
+    /// As [`KaneSystem::symbolic`], with the speeds of `split` (a steady motion's: chosen
+    /// where the motion is, so the cyclic coordinates' rates are the dependent ones there).
+    ///
+    /// # Errors
+    /// As [`KaneSystem::symbolic`].
+    pub fn symbolic_with(
+        &self,
+        split: SpeedSplit,
+        q: &[f64],
+        values: &[f64],
+    ) -> Result<KaneEquations, KaneError> {
+        if self.geometry.len() > MAX_PROGRAM {
+            return Err(KaneError::TooLarge {
+                what: "the compiled geometry",
+                size: self.geometry.len(),
+                limit: MAX_PROGRAM,
+            });
+        }
         let (qs, u, t, vals) = self.sample_symbols(&split, q, values);
         let r = self.reduced::<Sym>(&split, &qs, &u, t, &vals)?;
         let nodes = distinct_nodes(
