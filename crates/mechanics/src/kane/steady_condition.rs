@@ -76,13 +76,13 @@ impl KaneSystem {
         // with the cyclic coordinates' rates preferred as dependent (the contact point's
         // `ẋ`, `ẏ`): chosen at the generic sample instead, the pivots follow the sizes there
         // and may make a heading rate dependent, which ties the equations to the heading.
-        let cyclic: Vec<bool> = self
+        let dependent: Vec<bool> = self
             .coordinates
             .iter()
-            .map(|c| lin.cyclic.contains(c))
+            .map(|c| lin.cyclic.contains(c) && !lin.speeds.contains(c))
             .collect();
-        let all = vec![true; cyclic.len()];
-        let split = self.split(&lin.configuration, 0.0, values, &cyclic, &all)?;
+        let all = vec![true; dependent.len()];
+        let split = self.split(&lin.configuration, 0.0, values, &dependent, &all)?;
         let eq = self.symbolic_with(split, &sample, values)?;
         let shape: Vec<usize> = lin
             .shape

@@ -137,8 +137,10 @@ impl KaneSystem {
         }
         // Which coordinates are cyclic is judged where the holonomic constraints hold; when
         // they cannot be satisfied near the sample, no preference is given.
-        let cyclic = self.cyclic(&first, q, 0.0, values).unwrap_or(none);
-        self.split(q, 0.0, values, &cyclic, &all)
+        let prefer = self
+            .cyclic_and_preferred(q, 0.0, values)
+            .map_or(none, |(_, prefer)| prefer);
+        self.split(q, 0.0, values, &prefer, &all)
     }
 
     /// The variables as symbols with their sample values: coordinates, the speeds (the rates
