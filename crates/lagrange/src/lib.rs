@@ -84,6 +84,7 @@ mod runs;
 mod simulate;
 mod solve;
 mod steady;
+mod steady_condition;
 pub mod steady_print;
 mod working;
 mod written;
@@ -115,6 +116,9 @@ pub use simulate::{
 };
 pub use solve::{Figures, Solution, PNG_SCALE};
 pub use steady::{CanonicalForm, ChangeKind, StabilityChange, SteadySweep};
+pub use steady_condition::{
+    condition_json as steady_condition_json, condition_lines as steady_condition_lines,
+};
 pub use written::{check_output, create, write_file, PreparedRun, RunFiles, WrittenRun};
 
 pub use cas;

@@ -8,7 +8,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::formats::{json_text, Linearized, ResultFormat, Written};
-use crate::steady_print::{plot_sweep, steady_json, steady_text, sweep_json, sweep_text};
+use crate::steady_print::{
+    plot_sweep, steady_json, steady_text, sweep_json, sweep_text, SteadyExtras,
+};
 use crate::{Analysis, Error, FloquetOptions, Search};
 
 /// What is asked. Every list holds the texts as given (`NAME=VALUE`, `NAME=A..B`).
@@ -272,11 +274,21 @@ impl Analysis {
             let canonical = self
                 .steady_speed_parameter()
                 .and_then(|v| self.canonical_form(&v).ok());
+            let spectrum = lin.spectrum().ok();
+            let condition = match &spectrum {
+                Some(s) => self.steady_condition(&lin, s)?,
+                None => None,
+            };
+            let extras = SteadyExtras {
+                canonical: canonical.as_ref(),
+                spectrum: spectrum.as_ref(),
+                condition: condition.as_ref(),
+            };
             let coordinates = self.system().coordinates();
             let text = if as_json {
-                json_text(&steady_json(coordinates, &lin, canonical.as_ref()))
+                json_text(&steady_json(coordinates, &lin, extras))
             } else {
-                steady_text(coordinates, &lin, canonical.as_ref())
+                steady_text(coordinates, &lin, extras)
             };
             return Ok(Answer { text, figure: None });
         };

@@ -96,6 +96,9 @@ impl Analysis {
                 }
             }
         }
+        if self.describes_steady_motion() {
+            document.sections.push(self.steady_section());
+        }
         // Before the simulation, whose one-sided contacts then reuse them.
         let reactions = self.reactions();
         let has_statement = self

@@ -3,7 +3,9 @@
 //! the canonical second-order form `M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = 0` of the bicycle
 //! literature.
 
-use mechanics::kane::{KaneSystem, SteadyLinearization, SteadyMotion};
+use mechanics::kane::{
+    KaneSystem, SteadyLinearization, SteadyMotion, SteadySpectrum, SteadyVerdict,
+};
 
 use crate::{Analysis, Error};
 
@@ -52,6 +54,10 @@ pub struct CanonicalForm {
     pub k0: Vec<Vec<f64>>,
     /// `K₂`.
     pub k2: Vec<Vec<f64>>,
+    /// The speeds eliminated (not shape rates, whose linearized equations integrate to a
+    /// combination of the shape coordinates, `ψ̇ = −8 θ`), each with its coefficients on
+    /// the shape coordinates at the speed of the form.
+    pub eliminated: Vec<(String, Vec<f64>)>,
 }
 
 impl Analysis {
@@ -92,7 +98,7 @@ impl Analysis {
     }
 
     /// The coordinates whose rates the model's `initial` statement or a set value gives.
-    fn given_rates(&self) -> Vec<String> {
+    pub(crate) fn given_rates(&self) -> Vec<String> {
         let mut given: Vec<String> = self.initial_rates_set();
         if let Some(source) = self.source() {
             for i in source.model.initial().iter().filter(|i| i.rate) {
@@ -177,9 +183,11 @@ impl Analysis {
         Ok(system.linearize_steady(&at.steady_motion()?, &values)?)
     }
 
-    /// The parameter values in `from..to` where the sweep's stability changes: where the
-    /// largest real part of the eigenvalues that are not zero crosses zero, refined by
-    /// bisection.
+    /// The parameter values in `from..to` where the sweep's stability changes, refined by
+    /// bisection: where the largest real part of the eigenvalues outside the family of steady
+    /// motions crosses zero (real parts on the imaginary axis to rounding count as zero, so
+    /// that purely imaginary eigenvalues make no crossings), and where the verdict changes
+    /// otherwise (a real pair `±μ` becoming `±iω`: the upright disk at `v² = g R/3`).
     ///
     /// # Errors
     /// As [`Analysis::steady_sweep`].
@@ -190,10 +198,14 @@ impl Analysis {
             let ((a, Ok(la)), (b, Ok(lb))) = (&pair[0], &pair[1]) else {
                 continue;
             };
+            let found = out.len();
             for oscillatory in [false, true] {
-                let (fa, fb) = (leading(la, oscillatory), leading(lb, oscillatory));
-                if let (Some(fa), Some(fb)) = (fa, fb) {
-                    if (fa < 0.0) != (fb < 0.0) {
+                let (fa, fb) = (
+                    leading(la, oscillatory, true),
+                    leading(lb, oscillatory, true),
+                );
+                if let (Some((fa, sa)), Some((fb, sb))) = (fa, fb) {
+                    if sa != 0 && sb != 0 && sa != sb {
                         out.push(self.bisect(
                             &system,
                             &sweep.parameter,
@@ -203,6 +215,10 @@ impl Analysis {
                         )?);
                     }
                 }
+            }
+            let (va, vb) = (class(la), class(lb));
+            if out.len() == found && va.is_some() && vb.is_some() && va != vb {
+                out.push(self.bisect_verdict(&system, &sweep.parameter, *a, *b)?);
             }
         }
         out.sort_by(|x, y| x.at.total_cmp(&y.at));
@@ -223,7 +239,9 @@ impl Analysis {
             }
             let m = 0.5 * (a + b);
             let lin = self.linearize_at(system, parameter, m)?;
-            let Some(fm) = leading(&lin, oscillatory) else {
+            // Near a real eigenvalue through zero the family's test would count it as one of
+            // the family's zeros: the bisection reads every eigenvalue of the coupled states.
+            let Some((fm, _)) = leading(&lin, oscillatory, false) else {
                 break;
             };
             if (fm < 0.0) == (fa < 0.0) {
@@ -239,6 +257,56 @@ impl Analysis {
             ChangeKind::Oscillatory
         } else {
             ChangeKind::Real
+        };
+        Ok(StabilityChange {
+            at: 0.5 * (a + b),
+            kind,
+        })
+    }
+
+    /// Bisection on the verdict between `a` and `b`, where it differs; the kind read off the
+    /// unstable side's growing eigenvalues (real: a real pair turned complex; complex: a
+    /// pair through the imaginary axis).
+    fn bisect_verdict(
+        &self,
+        system: &KaneSystem,
+        parameter: &str,
+        mut a: f64,
+        mut b: f64,
+    ) -> Result<StabilityChange, Error> {
+        let at = |x: f64| -> Result<(SteadyLinearization, Option<&'static str>), Error> {
+            let lin = self.linearize_at(system, parameter, x)?;
+            let v = class(&lin);
+            Ok((lin, v))
+        };
+        let (mut la, va) = at(a)?;
+        let (mut lb, _) = at(b)?;
+        for _ in 0..200 {
+            if (b - a).abs() <= 1e-13 * (1.0 + a.abs()) {
+                break;
+            }
+            let m = 0.5 * (a + b);
+            let (lm, vm) = at(m)?;
+            if vm == va {
+                (a, la) = (m, lm);
+            } else {
+                (b, lb) = (m, lm);
+            }
+        }
+        let unstable = if verdict(&la).is_some_and(|v| !v.is_stable()) {
+            &la
+        } else {
+            &lb
+        };
+        let growing_real = unstable.spectrum().is_ok_and(|s| {
+            s.others()
+                .filter(|(re, _)| *re > 0.0)
+                .all(|(_, im)| im == 0.0)
+        });
+        let kind = if growing_real {
+            ChangeKind::Coalescence
+        } else {
+            ChangeKind::Oscillatory
         };
         Ok(StabilityChange {
             at: 0.5 * (a + b),
@@ -276,16 +344,23 @@ impl Analysis {
                     "the canonical form needs each shape coordinate's rate as a speed".into(),
                 )
             })?;
-        let pick = |f: &dyn Fn(usize, usize) -> f64| -> Vec<Vec<f64>> {
-            (0..rows.len())
-                .map(|i| (0..rows.len()).map(|j| f(i, j)).collect())
-                .collect()
+        let not_reducible = || {
+            Error::NotAvailable(
+                "the canonical form needs every other speed decoupled or a combination of the \
+                 shape coordinates"
+                    .into(),
+            )
         };
-        let mass = pick(&|i, j| moving.mass[rows[i]][rows[j]]);
-        let c1 = pick(&|i, j| moving.damping[rows[i]][rows[j]] / v);
-        let k0 = pick(&|i, j| still.stiffness[rows[i]][j] / g);
-        let k2 =
-            pick(&|i, j| (moving.stiffness[rows[i]][j] - still.stiffness[rows[i]][j]) / (v * v));
+        let moving_form = shape_equations(&moving, &rows).ok_or_else(not_reducible)?;
+        let still_form = shape_equations(&still, &rows).ok_or_else(not_reducible)?;
+        let n = rows.len();
+        let pick = |f: &dyn Fn(usize, usize) -> f64| -> Vec<Vec<f64>> {
+            (0..n).map(|i| (0..n).map(|j| f(i, j)).collect()).collect()
+        };
+        let mass = moving_form.mass;
+        let c1 = pick(&|i, j| moving_form.damping[i][j] / v);
+        let k0 = pick(&|i, j| still_form.stiffness[i][j] / g);
+        let k2 = pick(&|i, j| (moving_form.stiffness[i][j] - still_form.stiffness[i][j]) / (v * v));
         Ok(CanonicalForm {
             coordinates: moving.shape.clone(),
             speed: speed.to_string(),
@@ -293,6 +368,7 @@ impl Analysis {
             c1,
             k0,
             k2,
+            eliminated: moving_form.eliminated,
         })
     }
 
@@ -332,18 +408,109 @@ impl Analysis {
     }
 }
 
-/// The largest real part among the complex eigenvalues, or among the real ones (the decoupled
-/// states' zeros are not among them).
-fn leading(lin: &SteadyLinearization, oscillatory: bool) -> Option<f64> {
+/// The largest real part among the complex eigenvalues, or among the real ones, outside the
+/// family of steady motions (the decoupled states' zeros are not among them, and as many of
+/// the eigenvalues nearest zero as the family has coupled directions are left out), with its
+/// sign: `0` when it is on the imaginary axis to rounding ([`SteadySpectrum::axis_tolerance`]).
+/// With `aside` false, every eigenvalue of the coupled states counts and the sign is exact.
+fn leading(lin: &SteadyLinearization, oscillatory: bool, aside: bool) -> Option<(f64, i8)> {
     let scale = lin
         .eigenvalues
         .iter()
         .fold(1.0_f64, |m, (re, im)| m.max(re.hypot(*im)));
-    lin.eigenvalues
+    let spectrum = if aside { lin.spectrum().ok() } else { None };
+    let family = spectrum
+        .as_ref()
+        .map_or(0, |s| s.family.iter().filter(|f| **f).count())
+        .saturating_sub(lin.decoupled.len());
+    let mut by_size: Vec<(f64, f64)> = lin.eigenvalues.clone();
+    by_size.sort_by(|x, y| x.0.hypot(x.1).total_cmp(&y.0.hypot(y.1)));
+    let tolerance = spectrum
+        .as_ref()
+        .map_or(0.0, SteadySpectrum::axis_tolerance);
+    let re = by_size
         .iter()
+        .skip(family)
         .filter(|(_, im)| (im.abs() > 1e-9 * scale) == oscillatory)
         .map(|(re, _)| *re)
-        .reduce(f64::max)
+        .reduce(f64::max)?;
+    let sign = if re.abs() <= tolerance {
+        0
+    } else if re < 0.0 {
+        -1
+    } else {
+        1
+    };
+    Some((re, sign))
+}
+
+/// The verdict relative to the family of steady motions.
+fn verdict(lin: &SteadyLinearization) -> Option<SteadyVerdict> {
+    lin.spectrum().ok().map(|s| s.verdict)
+}
+
+/// The verdict's class: asymptotic, marginal or unstable.
+fn class(lin: &SteadyLinearization) -> Option<&'static str> {
+    verdict(lin).map(SteadyVerdict::short)
+}
+
+/// `M q̈ + C q̇ + K q = 0` in the shape coordinates alone.
+struct ShapeEquations {
+    mass: Vec<Vec<f64>>,
+    damping: Vec<Vec<f64>>,
+    stiffness: Vec<Vec<f64>>,
+    eliminated: Vec<(String, Vec<f64>)>,
+}
+
+/// The rows of the shape coordinates' speeds (`rows`, one per shape coordinate) with every
+/// other speed `u_c` eliminated where that is exact: a speed that nothing changes (its row of
+/// `A` zero) stays at its steady value, so its perturbation is zero within the family; a
+/// speed whose linearized equation is a combination of shape rates, `u̇_c = Σ a_i q̇_i`,
+/// integrates to `u_c = Σ a_i q_i` (the constant fixed by the family: the upright disk's
+/// `ψ̇ = −8 θ`), and its terms `M_rc u̇_c + D_rc u_c` join the damping and the stiffness.
+/// `None` when some other speed is neither.
+fn shape_equations(lin: &SteadyLinearization, rows: &[usize]) -> Option<ShapeEquations> {
+    let s = lin.shape.len();
+    let n = rows.len();
+    let a = &lin.state_matrix;
+    let tiny = 1e-12 * a.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let mass: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| rows.iter().map(|c| lin.mass[*r][*c]).collect())
+        .collect();
+    let mut damping: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| rows.iter().map(|c| lin.damping[*r][*c]).collect())
+        .collect();
+    let mut stiffness: Vec<Vec<f64>> = rows.iter().map(|r| lin.stiffness[*r].clone()).collect();
+    let mut eliminated = Vec::new();
+    for c in (0..lin.speeds.len()).filter(|c| !rows.contains(c)) {
+        let row = a.get(s + c)?;
+        if row.iter().all(|x| x.abs() <= tiny) {
+            continue;
+        }
+        let outside = (0..row.len()).any(|k| {
+            let shape_rate = k >= s && rows.contains(&(k - s));
+            !shape_rate && row[k].abs() > tiny
+        });
+        if outside {
+            return None;
+        }
+        let coefficients: Vec<f64> = rows.iter().map(|r| row[s + r]).collect();
+        for i in 0..n {
+            for j in 0..n {
+                damping[i][j] += lin.mass[rows[i]][c] * coefficients[j];
+                stiffness[i][j] += lin.damping[rows[i]][c] * coefficients[j];
+            }
+        }
+        eliminated.push((format!("{}_d", lin.speeds[c]), coefficients));
+    }
+    Some(ShapeEquations {
+        mass,
+        damping,
+        stiffness,
+        eliminated,
+    })
 }
 
 /// The magnitude of gravity at the given values.

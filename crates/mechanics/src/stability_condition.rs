@@ -41,6 +41,13 @@ pub enum ConditionCriterion {
     /// Two coordinates coupled gyroscopically: the characteristic polynomial's roots purely
     /// imaginary and distinct.
     Gyroscopic,
+    /// A steady motion of a conservative (nonholonomic) system: its characteristic
+    /// polynomial, the family's zero roots divided out, even in `λ`, with every root in `λ²`
+    /// real, negative and distinct (`mechanics::kane`'s steady condition).
+    EvenCharacteristic,
+    /// A steady motion: the characteristic polynomial, the family's zero roots divided out,
+    /// with every root to the left of the imaginary axis (Routh–Hurwitz).
+    RouthHurwitz,
 }
 
 impl ConditionCriterion {
@@ -57,6 +64,14 @@ impl ConditionCriterion {
             }
             ConditionCriterion::Gyroscopic => {
                 "the roots λ of det(M0 λ² + G λ + K0) = 0 purely imaginary and distinct"
+            }
+            ConditionCriterion::EvenCharacteristic => {
+                "the roots λ of the characteristic polynomial, the family's zero roots divided \
+                 out, purely imaginary and distinct"
+            }
+            ConditionCriterion::RouthHurwitz => {
+                "Routh–Hurwitz on the characteristic polynomial, the family's zero roots \
+                 divided out"
             }
         }
     }
@@ -103,6 +118,9 @@ pub struct StabilityCondition {
     pub verdict: Verdict,
     /// The boundaries of the condition.
     pub boundaries: Vec<Boundary>,
+    /// The characteristic polynomial's coefficients `c₀, c₁, …` (the family's zero roots
+    /// divided out) where the criterion reads them; empty otherwise.
+    pub characteristic: Vec<Expr>,
 }
 
 impl StabilityCondition {
@@ -111,6 +129,8 @@ impl StabilityCondition {
     pub fn sentence(&self, print: fn(Expr) -> String) -> String {
         let how = if self.criterion == ConditionCriterion::Routh && self.coordinates.len() > 1 {
             "stable if"
+        } else if self.criterion == ConditionCriterion::EvenCharacteristic {
+            "stable to first order iff"
         } else {
             "stable iff"
         };
@@ -226,6 +246,7 @@ pub fn stability_condition(
         tests,
         verdict,
         boundaries,
+        characteristic: Vec::new(),
     })
 }
 
@@ -437,6 +458,7 @@ pub fn isotropic_condition(
         tests,
         verdict,
         boundaries,
+        characteristic: Vec::new(),
     }
 }
 

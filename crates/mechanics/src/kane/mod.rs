@@ -28,8 +28,10 @@ mod rank;
 mod scalar;
 mod split;
 mod steady;
+mod steady_condition;
 mod steady_rates;
 mod symbolic;
+mod verdict;
 
 pub use agree::Agreement;
 pub use dynamics::{KaneSystem, Reduced, SpeedSplit};
@@ -37,7 +39,9 @@ pub use program::{Program, Variables};
 pub use rank::constraint_rank;
 pub use scalar::{Dual, Scalar};
 pub use steady::{SteadyLinearization, SteadyMotion};
+pub use steady_condition::{exact_value, fresh_lambda, ExactSteadyMotion};
 pub use symbolic::{KaneEquations, Sym, MAX_NODES, MAX_PROGRAM};
+pub use verdict::{SteadySpectrum, SteadyVerdict};
 
 use thiserror::Error;
 

@@ -100,13 +100,9 @@ impl KaneSystem {
     /// Splits the speeds twice: once to find the cyclic coordinates, then preferring them as
     /// the dependent rates (so the shape rates stay speeds).
     fn roles(&self, q0: &[f64], t: f64, values: &[f64]) -> Result<Roles, KaneError> {
-        let n = q0.len();
-        let none = vec![false; n];
-        let all = vec![true; n];
-        let first = self.split(q0, t, values, &none, &all)?;
-        let cyclic = self.cyclic(&first, q0, t, values)?;
+        let (cyclic, prefer) = self.cyclic_and_preferred(q0, t, values)?;
         let free: Vec<bool> = cyclic.iter().map(|c| !c).collect();
-        let split = self.split(q0, t, values, &cyclic, &free)?;
+        let split = self.split(q0, t, values, &prefer, &free)?;
         let (mut holonomic, mut holonomic_rows) = (Vec::new(), Vec::new());
         for (r, c) in split.rows.iter().zip(&split.dependent) {
             if *r < self.holonomic {
@@ -114,7 +110,7 @@ impl KaneSystem {
                 holonomic_rows.push(*r);
             }
         }
-        let shape = (0..n)
+        let shape = (0..q0.len())
             .filter(|j| !cyclic[*j] && !holonomic.contains(j))
             .collect();
         Ok(Roles {
@@ -123,6 +119,49 @@ impl KaneSystem {
             holonomic,
             holonomic_rows,
             shape,
+        })
+    }
+
+    /// The cyclic coordinates, and the coordinates to prefer as the dependent rates: the
+    /// cyclic ones. They are judged under the split of the largest pivots, unless a split that
+    /// avoids one of its dependent rates leaves more coordinates cyclic: the largest pivot
+    /// depends on the units (a rolling disk's spin enters its contact's velocity as `R φ̇`,
+    /// larger than `ẋ`'s `1` once `R > 1`), and a spin rate taken as dependent ties the
+    /// reduced equations to the heading. Then only that split's cyclic dependent rates are
+    /// preferred, so that the sizes cannot choose the spin again.
+    pub(super) fn cyclic_and_preferred(
+        &self,
+        q0: &[f64],
+        t: f64,
+        values: &[f64],
+    ) -> Result<(Vec<bool>, Vec<bool>), KaneError> {
+        let n = q0.len();
+        let all = vec![true; n];
+        let first = self.split(q0, t, values, &vec![false; n], &all)?;
+        let cyclic = self.cyclic(&first, q0, t, values)?;
+        let count = |c: &[bool]| c.iter().filter(|x| **x).count();
+        let mut better: Option<(SpeedSplit, Vec<bool>)> = None;
+        for &avoided in &first.dependent {
+            let others: Vec<bool> = (0..n).map(|j| j != avoided).collect();
+            let Ok(other) = self.split(q0, t, values, &others, &all) else {
+                continue;
+            };
+            let Ok(other_cyclic) = self.cyclic(&other, q0, t, values) else {
+                continue;
+            };
+            let best = better.as_ref().map_or(count(&cyclic), |(_, c)| count(c));
+            if count(&other_cyclic) > best {
+                better = Some((other, other_cyclic));
+            }
+        }
+        Ok(match better {
+            None => (cyclic.clone(), cyclic),
+            Some((split, cyclic)) => {
+                let prefer = (0..n)
+                    .map(|j| cyclic[j] && split.dependent.contains(&j))
+                    .collect();
+                (cyclic, prefer)
+            }
         })
     }
 

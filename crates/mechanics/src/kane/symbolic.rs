@@ -72,6 +72,27 @@ impl KaneSystem {
             });
         }
         let split = self.eom_split(q, values)?;
+        self.symbolic_with(split, q, values)
+    }
+
+    /// As [`KaneSystem::symbolic`], with the speeds of `split` (a steady motion's: chosen
+    /// where the motion is, so the cyclic coordinates' rates are the dependent ones there).
+    ///
+    /// # Errors
+    /// As [`KaneSystem::symbolic`].
+    pub fn symbolic_with(
+        &self,
+        split: SpeedSplit,
+        q: &[f64],
+        values: &[f64],
+    ) -> Result<KaneEquations, KaneError> {
+        if self.geometry.len() > MAX_PROGRAM {
+            return Err(KaneError::TooLarge {
+                what: "the compiled geometry",
+                size: self.geometry.len(),
+                limit: MAX_PROGRAM,
+            });
+        }
         let (qs, u, t, vals) = self.sample_symbols(&split, q, values);
         let r = self.reduced::<Sym>(&split, &qs, &u, t, &vals)?;
         let nodes = distinct_nodes(
@@ -116,8 +137,10 @@ impl KaneSystem {
         }
         // Which coordinates are cyclic is judged where the holonomic constraints hold; when
         // they cannot be satisfied near the sample, no preference is given.
-        let cyclic = self.cyclic(&first, q, 0.0, values).unwrap_or(none);
-        self.split(q, 0.0, values, &cyclic, &all)
+        let prefer = self
+            .cyclic_and_preferred(q, 0.0, values)
+            .map_or(none, |(_, prefer)| prefer);
+        self.split(q, 0.0, values, &prefer, &all)
     }
 
     /// The variables as symbols with their sample values: coordinates, the speeds (the rates
@@ -186,7 +209,7 @@ fn distinct_nodes(roots: impl Iterator<Item = Expr>, limit: usize) -> usize {
 
 /// `x` as an exact number where it is one with a small denominator (the constants of the
 /// derivation: 0, 1, ½, the integer powers), a float otherwise.
-fn exact_number(x: f64) -> Expr {
+pub(super) fn exact_number(x: f64) -> Expr {
     for den in [1_i64, 2, 3, 4, 6, 8, 12, 16] {
         let scaled = x * den as f64;
         if scaled.fract() == 0.0 && scaled.abs() < 1e15 {
