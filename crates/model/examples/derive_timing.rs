@@ -55,7 +55,10 @@ fn main() -> ExitCode {
     std::hint::black_box(equations.forcing());
     if count_terms {
         let entries = equations.mass_matrix().iter().flatten();
-        let terms: usize = entries.chain(equations.forcing()).map(|e| terms_of(*e)).sum();
+        let terms: usize = entries
+            .chain(equations.forcing())
+            .map(|e| terms_of(*e))
+            .sum();
         println!("{seconds} {terms}");
     } else {
         println!("{seconds}");
