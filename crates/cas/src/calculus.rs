@@ -16,8 +16,8 @@ use crate::limits;
 use crate::normal::{cached_rf, from_rf, Normalizer, Rf};
 use crate::number::Number;
 use crate::poly::{
-    atom_expr, atom_info, mul_monomials, needs_rewrite, plain_atom, rewrite_term, AtomId, AtomKind,
-    Monomial, Poly,
+    atom_expr, atom_index, atom_info, mul_factor_slices, mul_monomials, needs_rewrite, plain_atom,
+    rewrite_term, AtomId, AtomKind, Monomial, Poly, MERGE_BUFFER,
 };
 
 /// The variable of a derivative was not a symbol.
@@ -70,13 +70,20 @@ impl Deriver {
     }
 
     fn poly(&mut self, p: &Poly) -> Rf {
-        let mut buckets = Buckets::default();
+        let mut buckets = Buckets::for_poly(p);
         for (m, c) in &p.terms {
             for (i, &(a, _)) in m.iter().enumerate() {
-                if !self.atom_is_constant(a) {
+                let part = match buckets.slot(a) {
+                    Slot::Constant => continue,
+                    Slot::Part(k) => k,
+                    Slot::Unknown if self.atom_is_constant(a) => {
+                        buckets.set_constant(a);
+                        continue;
+                    }
                     // `atom_is_constant` has worked out (and kept) the atom's derivative.
-                    buckets.push(a, m, i, c, &self.atoms[&a]);
-                }
+                    Slot::Unknown => buckets.open(a, &self.atoms[&a]),
+                };
+                buckets.push(part, m, i, c);
             }
         }
         buckets.assemble(|a| self.atom(a))
@@ -237,57 +244,141 @@ fn lowered(m: &Monomial, i: usize, e: u32, c: &Number) -> (Monomial, Number) {
     (reduced, c.mul(&Number::int(i64::from(e))))
 }
 
+/// `m` with its `i`-th factor lowered by one, times `md`: [`lowered`] and [`mul_monomials`] in
+/// one pass on the stack (this product is formed for every factor of every term of a
+/// derivative), without the intermediate monomial.
+fn lowered_product(m: &Monomial, i: usize, md: &Monomial) -> Monomial {
+    if m.len() + md.len() > MERGE_BUFFER {
+        return mul_monomials(&lowered(m, i, m[i].1, &Number::ONE).0, md);
+    }
+    let mut reduced = [(0, 0); MERGE_BUFFER];
+    let mut k = 0;
+    for (j, &(x, e)) in m.iter().enumerate() {
+        let e = if j == i { e - 1 } else { e };
+        if e > 0 {
+            reduced[k] = (x, e);
+            k += 1;
+        }
+    }
+    mul_factor_slices(&reduced[..k], md)
+}
+
 /// The terms of `∂P/∂a · da` for each atom `a` of a polynomial `P`, in the order the atoms are
 /// first met. When `da` is one term (`d sin θ = cos θ θ̇`, `d θ̇ = θ̈`, `∂θ/∂θ = 1`: nearly
 /// always) each term's product is formed as the term is read; otherwise the terms of `∂P/∂a`
 /// wait for a full product in [`Buckets::assemble`].
+///
+/// Each atom's part is found through a table indexed by atom index over the range of the
+/// polynomial's atoms: a derivative visits every factor of every term, and looking the atom
+/// up in hash maps (whether it is constant, its derivative, its part) was a third of it.
 #[derive(Default)]
 struct Buckets {
-    terms: FxHashMap<AtomId, Vec<(Monomial, Number)>>,
-    /// The atoms, and whether their terms are multiplied by `da` already.
-    order: Vec<(AtomId, bool)>,
+    /// The atoms' parts, in the order the atoms are first met.
+    parts: Vec<Bucket>,
+    /// The smallest atom index of the polynomial: `slots` is indexed from it.
+    low: u32,
+    /// Each atom's part, [`CONSTANT`] or [`UNKNOWN`].
+    slots: Vec<u32>,
     /// Products a rewriting rule applies to (`sin θ · d cos θ = −sin² θ θ̇`).
     rewrites: Vec<(Monomial, Number)>,
 }
 
+/// The terms of `∂P/∂a · da` for one atom `a`.
+struct Bucket {
+    atom: AtomId,
+    /// `da` when it is one term: the bucket's terms are multiplied by it already.
+    single: Option<(Monomial, Number)>,
+    terms: Vec<(Monomial, Number)>,
+}
+
+/// A slot of an atom not met yet.
+const UNKNOWN: u32 = u32::MAX;
+/// A slot of an atom whose derivative is zero.
+const CONSTANT: u32 = u32::MAX - 1;
+
+/// What [`Buckets`] knows of an atom.
+enum Slot {
+    Unknown,
+    Constant,
+    Part(usize),
+}
+
 impl Buckets {
-    /// Adds the derivative of the term `c m` with respect to its `i`-th factor, the atom `a`
-    /// whose derivative is `da`.
-    fn push(&mut self, a: AtomId, m: &Monomial, i: usize, c: &Number, da: &Rf) {
-        let single = one_term(da);
-        let order = &mut self.order;
-        let bucket = self.terms.entry(a).or_insert_with(|| {
-            order.push((a, single.is_some()));
+    /// Empty parts for the atoms of `p`.
+    fn for_poly(p: &Poly) -> Buckets {
+        Buckets::for_range(atom_range(p))
+    }
+
+    /// Empty parts for atoms whose indices are in `low..=high`.
+    fn for_range((low, high): (u32, u32)) -> Buckets {
+        let slots = if low <= high {
+            vec![UNKNOWN; (high - low + 1) as usize]
+        } else {
             Vec::new()
+        };
+        Buckets {
+            low,
+            slots,
+            ..Buckets::default()
+        }
+    }
+
+    /// What is known of the atom `a` of the polynomial.
+    fn slot(&self, a: AtomId) -> Slot {
+        match self.slots[(atom_index(a) - self.low) as usize] {
+            UNKNOWN => Slot::Unknown,
+            CONSTANT => Slot::Constant,
+            k => Slot::Part(k as usize),
+        }
+    }
+
+    fn set_constant(&mut self, a: AtomId) {
+        self.slots[(atom_index(a) - self.low) as usize] = CONSTANT;
+    }
+
+    /// Opens the part of the atom `a`, whose derivative is `da`, and returns its number.
+    fn open(&mut self, a: AtomId, da: &Rf) -> usize {
+        let k = self.parts.len();
+        self.slots[(atom_index(a) - self.low) as usize] = k as u32;
+        self.parts.push(Bucket {
+            atom: a,
+            single: one_term(da).map(|(m, c)| (m.clone(), c.clone())),
+            terms: Vec::new(),
         });
-        let (reduced, coefficient) = lowered(m, i, m[i].1, c);
-        let Some((md, cd)) = single else {
-            bucket.push((reduced, coefficient));
+        k
+    }
+
+    /// Adds the derivative of the term `c m` with respect to its `i`-th factor, the atom of
+    /// part `k`.
+    fn push(&mut self, k: usize, m: &Monomial, i: usize, c: &Number) {
+        let bucket = &mut self.parts[k];
+        let Some((md, cd)) = &bucket.single else {
+            bucket.terms.push(lowered(m, i, m[i].1, c));
             return;
         };
-        let product = mul_monomials(&reduced, md);
-        let coefficient = coefficient.mul(cd);
+        let product = lowered_product(m, i, md);
+        let coefficient = c.mul(&Number::int(i64::from(m[i].1))).mul(cd);
         if product.iter().any(|&(x, k)| needs_rewrite(x, k)) {
             self.rewrites.push((product, coefficient));
         } else {
-            bucket.push((product, coefficient));
+            bucket.terms.push((product, coefficient));
         }
     }
 
     /// `Σ_a ∂P/∂a · da`: polynomial parts are gathered and sort-merged once (adding them one
     /// by one would copy the growing sum for every atom); fractions are added after.
-    fn assemble(mut self, mut derivative: impl FnMut(AtomId) -> Rf) -> Rf {
+    fn assemble(self, mut derivative: impl FnMut(AtomId) -> Rf) -> Rf {
         // Most atoms' derivatives are one term (`d sin θ = cos θ θ̇`), so the parts' sizes
         // are about the result's: reserved once rather than grown by copying.
-        let size: usize = self.terms.values().map(Vec::len).sum();
+        let size: usize = self.parts.iter().map(|b| b.terms.len()).sum();
         let mut terms = Vec::with_capacity(size + self.rewrites.len());
         let mut fractions = Rf::zero();
-        for (a, multiplied) in self.order {
+        for bucket in self.parts {
             // Removing one factor `a` from distinct monomials leaves distinct monomials, so the
             // bucket is a valid polynomial, and multiplying by one monomial keeps it one; each
             // bucket is a sorted run, which the final merge sorts with the others.
-            let part = self.terms.remove(&a).unwrap_or_default();
-            if multiplied {
+            let (a, part) = (bucket.atom, bucket.terms);
+            if bucket.single.is_some() {
                 if !limits::spend(part.len() as u64) {
                     return Rf::zero();
                 }
@@ -307,6 +398,18 @@ impl Buckets {
         }
         Rf::from_poly(Poly::from_terms(terms)).add(&fractions)
     }
+}
+
+/// The smallest and the largest atom index of `p` (`(u32::MAX, 0)` when it has no atom).
+fn atom_range(p: &Poly) -> (u32, u32) {
+    let (mut low, mut high) = (u32::MAX, 0);
+    for (m, _) in &p.terms {
+        for &(a, _) in m {
+            low = low.min(atom_index(a));
+            high = high.max(atom_index(a));
+        }
+    }
+    (low, high)
 }
 
 /// The one term `c m` of a polynomial `da`, if that is what it is.
@@ -329,9 +432,11 @@ pub(crate) fn gradient_rf(r: &Rf, vars: &[Symbol]) -> Vec<Rf> {
         .iter()
         .map(|&v| Deriver::new(Wrt::Partial(Expr::from_symbol(v))))
         .collect();
-    // Which variables each atom depends on, decided once per atom.
-    let mut depends: FxHashMap<AtomId, Vec<usize>> = FxHashMap::default();
-    let mut buckets: Vec<Buckets> = vars.iter().map(|_| Buckets::default()).collect();
+    // Which variables each atom depends on (with the atom's part for each), decided once per
+    // atom.
+    let mut depends: FxHashMap<AtomId, Vec<(usize, usize)>> = FxHashMap::default();
+    let range = atom_range(&r.num);
+    let mut buckets: Vec<Buckets> = vars.iter().map(|_| Buckets::for_range(range)).collect();
     for (m, c) in &r.num.terms {
         for (i, &(a, _)) in m.iter().enumerate() {
             let on = depends.entry(a).or_insert_with(|| {
@@ -342,18 +447,18 @@ pub(crate) fn gradient_rf(r: &Rf, vars: &[Symbol]) -> Vec<Rf> {
                 let varying = |(k, d): (usize, &mut Deriver)| {
                     (mentioned.contains(&vars[k]) && !d.atom_is_constant(a)).then_some(k)
                 };
-                derivers
+                let on: Vec<usize> = derivers
                     .iter_mut()
                     .enumerate()
                     .filter_map(varying)
+                    .collect();
+                // `on` holds the variables whose derivers worked out `a`'s derivative.
+                on.into_iter()
+                    .map(|k| (k, buckets[k].open(a, &derivers[k].atoms[&a])))
                     .collect()
             });
-            if on.is_empty() {
-                continue;
-            }
-            for &k in on.iter() {
-                // `on` holds the variables whose derivers worked out `a`'s derivative.
-                buckets[k].push(a, m, i, c, &derivers[k].atoms[&a]);
+            for &(k, part) in on.iter() {
+                buckets[k].push(part, m, i, c);
             }
         }
     }

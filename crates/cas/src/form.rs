@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use crate::calculus::{gradient_rf, partial_derivative_rf, time_derivative_rf};
 use crate::expr::{Expr, Symbol};
-use crate::normal::{cached_rf, from_shared_rf, to_rf, Rf};
+use crate::normal::{cached_rf, from_shared_rf, to_rf, tree_unremembered, Rf};
 use crate::ops::affine_split;
 
 /// The normal form of an expression as a polynomial fraction (see the module documentation).
@@ -37,6 +37,17 @@ impl NormalForm {
     #[must_use]
     pub fn to_expr(&self) -> Expr {
         from_shared_rf(&self.0)
+    }
+
+    /// [`NormalForm::to_expr`] for a result whose working form is not wanted again: the tree
+    /// is the same, but the form is not remembered with it, so it is freed with the last
+    /// `NormalForm` that holds it. A later operation on the tree converts it back (in time
+    /// linear in its size). The mass matrix and forcing of a large system are kept as trees
+    /// by every later stage; remembering their working forms as well doubled the memory of a
+    /// derivation (the n-link pendulum at n = 100: O(n³) terms of 96 bytes each).
+    #[must_use]
+    pub fn to_expr_unremembered(&self) -> Expr {
+        tree_unremembered(&self.0)
     }
 
     /// Whether the form is identically zero (exact for the mechanics class).

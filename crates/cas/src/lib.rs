@@ -42,6 +42,7 @@ pub mod parse;
 mod poly;
 pub mod print;
 pub mod solve;
+mod term_order;
 
 pub use calculus::NotASymbol;
 pub use eval::EvalError;

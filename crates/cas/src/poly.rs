@@ -232,6 +232,9 @@ fn key(id: AtomId) -> u32 {
 }
 
 pub(crate) fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
+    if a.len() + b.len() <= MERGE_BUFFER {
+        return mul_factor_slices(a, b);
+    }
     let mut out = Monomial::with_capacity(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() && j < b.len() {
@@ -256,6 +259,44 @@ pub(crate) fn mul_monomials(a: &Monomial, b: &Monomial) -> Monomial {
     out.extend_from_slice(&a[i..]);
     out.extend_from_slice(&b[j..]);
     out
+}
+
+/// The longest product [`mul_factor_slices`] merges on the stack.
+pub(crate) const MERGE_BUFFER: usize = 16;
+
+/// [`mul_monomials`] of two factor lists with at most [`MERGE_BUFFER`] factors together,
+/// merged into a buffer on the stack and copied once: pushing onto the small vector checked
+/// its capacity and whether it had spilled at every factor, which made this merge of two
+/// short lists cost hundreds of instructions (the derivatives of a chain's Lagrangian form one
+/// product per factor of every term).
+pub(crate) fn mul_factor_slices(a: &[(AtomId, u32)], b: &[(AtomId, u32)]) -> Monomial {
+    let mut out = [(0u32, 0u32); MERGE_BUFFER];
+    let (mut i, mut j, mut k) = (0, 0, 0);
+    while i < a.len() && j < b.len() {
+        let (xa, ea) = a[i];
+        let (xb, eb) = b[j];
+        out[k] = match key(xa).cmp(&key(xb)) {
+            Ordering::Less => {
+                i += 1;
+                (xa, ea)
+            }
+            Ordering::Greater => {
+                j += 1;
+                (xb, eb)
+            }
+            Ordering::Equal => {
+                i += 1;
+                j += 1;
+                (xa, ea + eb)
+            }
+        };
+        k += 1;
+    }
+    for &f in a[i..].iter().chain(&b[j..]) {
+        out[k] = f;
+        k += 1;
+    }
+    Monomial::from_slice(&out[..k])
 }
 
 /// `a / b` when every exponent of `b` is at most the one in `a`.
@@ -351,25 +392,23 @@ impl Poly {
 
     /// Sorts and merges an unordered list of terms.
     pub(crate) fn from_terms(mut terms: Vec<(Monomial, Number)>) -> Poly {
-        // A stable sort, so that equal monomials add up in the order they came (float
-        // coefficients), merged in place: the derivation's large sums are mostly sorted runs
-        // (one per atom of a derivative), which the sort merges, and a second vector of the
-        // merged terms copied every term once more.
-        terms.sort_by(|a, b| cmp_monomial(&b.0, &a.0));
-        terms.dedup_by(|next, kept| {
-            let same = next.0 == kept.0;
-            if same {
-                kept.1 = kept.1.add(&next.1);
-            }
-            same
-        });
+        // Stable in effect, so that equal monomials add up in the order they came (float
+        // coefficients); sorted by packed keys and merged as the terms move into place.
+        crate::term_order::sort_and_merge(&mut terms);
         terms.retain(|(_, c)| !c.is_exact_zero());
         Poly { terms }
     }
 
     pub(crate) fn add(&self, other: &Poly) -> Poly {
+        self.merge(other, false)
+    }
+
+    /// `self + other`, or `self − other` when `negate`: one merge of the sorted terms (the
+    /// difference negated `other` into a copy first, and merged that).
+    fn merge(&self, other: &Poly, negate: bool) -> Poly {
+        let sign = |c: &Number| if negate { c.neg() } else { c.clone() };
         if self.is_zero() {
-            return other.clone();
+            return if negate { other.neg() } else { other.clone() };
         }
         if other.is_zero() {
             return self.clone();
@@ -385,11 +424,11 @@ impl Poly {
                     i += 1;
                 }
                 Ordering::Less => {
-                    out.push(b[j].clone());
+                    out.push((b[j].0.clone(), sign(&b[j].1)));
                     j += 1;
                 }
                 Ordering::Equal => {
-                    let c = a[i].1.add(&b[j].1);
+                    let c = a[i].1.add(&sign(&b[j].1));
                     if !c.is_exact_zero() {
                         out.push((a[i].0.clone(), c));
                     }
@@ -399,7 +438,7 @@ impl Poly {
             }
         }
         out.extend_from_slice(&a[i..]);
-        out.extend_from_slice(&b[j..]);
+        out.extend(b[j..].iter().map(|(m, c)| (m.clone(), sign(c))));
         Poly { terms: out }
     }
 
@@ -414,7 +453,7 @@ impl Poly {
     }
 
     pub(crate) fn sub(&self, other: &Poly) -> Poly {
-        self.add(&other.neg())
+        self.merge(other, true)
     }
 
     pub(crate) fn scale(&self, c: &Number) -> Poly {

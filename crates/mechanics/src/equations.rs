@@ -113,9 +113,11 @@ pub struct FirstIntegral {
 #[derive(Clone, Debug)]
 pub struct Equations {
     coordinates: Vec<String>,
-    kinetic_energy: LazyTree,
+    /// `L`, in working form; `K = L + V` is rebuilt from it when asked for (keeping both
+    /// held another O(n³) terms for an n-link chain).
+    lagrangian: LazyTree,
+    kinetic_energy: OnceLock<Expr>,
     potential_energy: Expr,
-    lagrangian: OnceLock<Expr>,
     generalized_forces: Vec<Expr>,
     lhs: OnceLock<Vec<Expr>>,
     mass_matrix: Vec<Vec<Expr>>,
@@ -147,7 +149,10 @@ impl Equations {
     /// `K`.
     #[must_use]
     pub fn kinetic_energy(&self) -> Expr {
-        self.kinetic_energy.tree()
+        *self.kinetic_energy.get_or_init(|| {
+            let potential = self.potential_energy.normal_form();
+            self.lagrangian.form.add(&potential).to_expr()
+        })
     }
     /// `V` (the seed's `U = −V`).
     #[must_use]
@@ -157,12 +162,7 @@ impl Equations {
     /// `L = K − V`.
     #[must_use]
     pub fn lagrangian(&self) -> Expr {
-        // Rebuilt from `K` and `V` when asked for: keeping `L`'s working form as well as
-        // `K`'s held another O(n³) terms for an n-link chain.
-        *self.lagrangian.get_or_init(|| {
-            let potential = self.potential_energy.normal_form();
-            self.kinetic_energy.form.sub(&potential).to_expr()
-        })
+        self.lagrangian.tree()
     }
     /// `Q_j`, damping included.
     #[must_use]
@@ -255,7 +255,7 @@ fn lagrange_lhs(
 }
 
 /// A result kept in working form whose canonical tree is built when first asked for. The trees
-/// of `K`, `L` and the left-hand sides `E_j` have as many terms as the mass matrix and the
+/// of `L` and the left-hand sides `E_j` have as many terms as the mass matrix and the
 /// forcing together (O(n³) for an n-link chain), and building a tree costs more than the
 /// derivative it comes from; a simulation or a sweep never reads them.
 #[derive(Clone, Debug)]
@@ -475,7 +475,16 @@ fn derive_limited(
     let (potential, forces) = potential_and_forces(&system, &omegas, &vars, progress);
     working_on(progress, None);
     let lagrangian = kinetic.sub(&potential);
-    let rows = lagrange_rows(&lagrangian, &forces, &vars, &coordinates)?;
+    // `K` is read again only by the first integrals (`Equations` rebuilds it from `L` and
+    // `V`); dropped here, its O(n³) terms are not held through the rows.
+    let kinetic = first_integrals_wanted.then_some(kinetic);
+    let rows = lagrange_rows(
+        &lagrangian,
+        &forces,
+        &vars,
+        &coordinates,
+        first_integrals_wanted,
+    )?;
     let (constraint_matrix, constraint_rhs, constraint_names) =
         constraint_rows(&kept, &vars, progress)?;
     working_on(progress, None);
@@ -496,9 +505,9 @@ fn derive_limited(
     } else {
         None
     };
-    let first_integrals = if first_integrals_wanted {
+    let first_integrals = if let Some(kinetic) = &kinetic {
         let energies = Energies {
-            kinetic: &kinetic,
+            kinetic,
             potential: &potential,
             lagrangian: &lagrangian,
             forces: &forces,
@@ -516,9 +525,9 @@ fn derive_limited(
     };
     Ok(Equations {
         coordinates,
-        kinetic_energy: LazyTree::new(kinetic),
+        lagrangian: LazyTree::new(lagrangian),
+        kinetic_energy: OnceLock::new(),
         potential_energy: potential.to_expr(),
-        lagrangian: OnceLock::new(),
         generalized_forces: forces,
         lhs: OnceLock::new(),
         mass_matrix: rows.mass_matrix,
@@ -662,6 +671,7 @@ fn potential_and_forces(
 
 /// Lagrange's equations row by row, with the working forms the first integrals need.
 struct Rows {
+    /// `∂L/∂q̇_j`, kept only when the first integrals are wanted (zero otherwise).
     momenta: Vec<NormalForm>,
     /// Whether `∂L/∂q_j` is zero (a cyclic coordinate).
     cyclic: Vec<bool>,
@@ -686,14 +696,20 @@ fn gradient(f: &NormalForm, symbols: &[Option<Symbol>]) -> Vec<NormalForm> {
 /// `E_j = d/dt(∂L/∂q̇_j) − ∂L/∂q_j`, `M_jk = ∂(E_j − Q_j)/∂q̈_k`, `f = −(E − Q)|_{q̈=0}`,
 /// on working forms: only the results that are kept become trees (building a large tree
 /// costs more than the derivative it comes from).
+///
+/// `M` and `f` become trees without their working forms remembered
+/// ([`NormalForm::to_expr_unremembered`]): every later stage reads the trees, and for an
+/// n-link chain their O(n³) terms held twice were most of the memory. The momenta are
+/// dropped row by row unless `keep_momenta` (the first integrals read them).
 fn lagrange_rows(
     lagrangian: &NormalForm,
     forces: &[Expr],
     vars: &Variables,
     coordinates: &[String],
+    keep_momenta: bool,
 ) -> Result<Rows, MechanicsError> {
     let n = coordinates.len();
-    let momenta = gradient(lagrangian, &vars.qd_sym);
+    let mut momenta = gradient(lagrangian, &vars.qd_sym);
     let generalized_gradient = gradient(lagrangian, &vars.q_sym);
     let cyclic = generalized_gradient
         .iter()
@@ -705,6 +721,10 @@ fn lagrange_rows(
     // Each `∂L/∂q_j` is dropped once its row is formed.
     for (j, partial_q) in generalized_gradient.into_iter().enumerate() {
         let e = momenta[j].dt().sub(&partial_q);
+        drop(partial_q);
+        if !keep_momenta {
+            momenta[j] = NormalForm::zero();
+        }
         let with_forces = if forces[j].is_literal_zero() {
             e.clone()
         } else {
@@ -718,8 +738,8 @@ fn lagrange_rows(
         if n <= ENERGY_CHECK_MAX_DOF {
             lhs_forms.push(e);
         }
-        mass_matrix.push(row.iter().map(NormalForm::to_expr).collect());
-        forcing.push(rest.neg().to_expr());
+        mass_matrix.push(row.iter().map(NormalForm::to_expr_unremembered).collect());
+        forcing.push(rest.neg().to_expr_unremembered());
     }
     Ok(Rows {
         momenta,
@@ -970,10 +990,12 @@ fn numerically_regular(mut a: Vec<Vec<f64>>) -> bool {
 /// freedom the determinant is checked exactly, and the coordinates of the pivot-less column
 /// are named.
 fn check_singular(mass: &[Vec<Expr>], coordinates: &[String]) -> Result<(), MechanicsError> {
+    // The entries are normal forms, whose zero is the literal zero: testing them with
+    // `is_zero` converted every entry of a large matrix back to its working form.
     let zero_rows: Vec<String> = mass
         .iter()
         .zip(coordinates)
-        .filter(|(row, _)| row.iter().all(|e| e.is_zero()))
+        .filter(|(row, _)| row.iter().all(|e| e.is_literal_zero()))
         .map(|(_, c)| c.clone())
         .collect();
     if !zero_rows.is_empty() {

@@ -92,6 +92,17 @@ pub(crate) fn from_shared_rf(r: &Arc<Rf>) -> Expr {
     remember(r, || Arc::clone(r))
 }
 
+/// The canonical expression of a normal form, remembered as its own normal form but without
+/// its working form (see `NormalForm::to_expr_unremembered`).
+pub(crate) fn tree_unremembered(r: &Rf) -> Expr {
+    let e = r.to_expr();
+    normal_memo()
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .insert(e, e);
+    e
+}
+
 fn remember(r: &Rf, shared: impl FnOnce() -> Arc<Rf>) -> Expr {
     let e = r.to_expr();
     normal_memo()

@@ -177,6 +177,10 @@ impl Rf {
     }
 
     pub(crate) fn sub(&self, other: &Rf) -> Rf {
+        // Two polynomials: one merge, as `add` does, without a negated copy of `other`.
+        if self.den.is_one() && other.den.is_one() {
+            return Rf::from_poly(self.num.sub(&other.num));
+        }
         self.add(&other.neg())
     }
 
