@@ -73,6 +73,7 @@ mod figure;
 mod floquet;
 mod formats;
 mod kane_eom;
+mod kane_motion;
 mod modes;
 mod output;
 mod plot_extras;
