@@ -74,6 +74,7 @@ mod floquet;
 mod formats;
 mod kane_eom;
 mod kane_motion;
+mod kane_solution;
 mod modes;
 mod output;
 mod plot_extras;
