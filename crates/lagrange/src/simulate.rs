@@ -557,7 +557,8 @@ impl Analysis {
     ) -> Result<Vec<Result<SweepRun, Error>>, Error> {
         // Derived (and the contacts found) once, before the runs share the analysis; Kane's
         // route derives nothing symbolic.
-        if self.simulation_method() == crate::Method::Lagrange {
+        let method = self.simulation_method();
+        if method == crate::Method::Lagrange {
             self.equations()?;
             if !options.through_contact_loss {
                 self.one_sided_contacts()?;
@@ -568,7 +569,7 @@ impl Analysis {
             for (name, value) in names.iter().zip(row) {
                 analysis.set_value(name, *value)?;
             }
-            let mut simulation = analysis.simulation(options)?;
+            let mut simulation = analysis.simulation_by(method, options)?;
             let mut last = Vec::new();
             let outcome = simulation.run(&mut |r| {
                 last.clear();
