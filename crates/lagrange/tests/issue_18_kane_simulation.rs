@@ -203,3 +203,39 @@ fn below_the_weave_speed_the_lean_grows() {
         "the weave does not grow: {first:e} then {last:e}"
     );
 }
+
+#[test]
+fn the_bicycle_is_solved_by_kane_without_trying_lagrange() {
+    let a = example("whipple-bicycle.lag");
+    let solution = a.solution(None).expect("the bicycle solves");
+    // The Lagrange route, which would pass the work limits after seconds, is never entered.
+    assert_eq!(a.derivations(), 0);
+    let titles: Vec<&str> = (solution.document.sections.iter())
+        .map(|s| s.title.as_str())
+        .collect();
+    for wanted in [
+        "The system",
+        "Generalized speeds",
+        "Reduced equations of motion",
+        "Steady motion and its stability",
+    ] {
+        assert!(titles.contains(&wanted), "no section {wanted} in {titles:?}");
+    }
+    let text = a
+        .solution_written(&solution, lagrange::ReportFormat::Text)
+        .expect("text");
+    // Paragraphs are wrapped for the terminal.
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    // Table 2 of Meijaard et al. at v = 5, to the ten digits printed.
+    for eigenvalue in ["−14.07838969", "−0.7753418822", "4.464867714", "−0.3228664290"] {
+        assert!(text.contains(eigenvalue), "{eigenvalue} missing:\n{text}");
+    }
+    assert!(text.contains("asymptotically stable"));
+    // Their canonical M₁₁ (equation A1: 80.81722).
+    assert!(text.contains("80.81722000"));
+    let json = a.solution_json(&solution).expect("json");
+    assert_eq!(json["method"], "kane");
+    assert_eq!(json["speeds"].as_array().map(Vec::len), Some(3));
+    assert!(json["report"].is_object());
+    assert_eq!(a.derivations(), 0);
+}
