@@ -107,7 +107,7 @@ impl Analysis {
         let at = model::line_col(&source.text, span.start);
         let kind = Error::Simulation(error.clone()).kind();
         Error::Located {
-            message: format!("starting the run on Kane's route: {error}"),
+            message: format!("starting the run: {error}"),
             line: at.line,
             column: at.column,
             kind,

@@ -219,7 +219,10 @@ fn the_bicycle_is_solved_by_kane_without_trying_lagrange() {
         "Reduced equations of motion",
         "Steady motion and its stability",
     ] {
-        assert!(titles.contains(&wanted), "no section {wanted} in {titles:?}");
+        assert!(
+            titles.contains(&wanted),
+            "no section {wanted} in {titles:?}"
+        );
     }
     let text = a
         .solution_written(&solution, lagrange::ReportFormat::Text)
@@ -227,7 +230,12 @@ fn the_bicycle_is_solved_by_kane_without_trying_lagrange() {
     // Paragraphs are wrapped for the terminal.
     let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
     // Table 2 of Meijaard et al. at v = 5, to the ten digits printed.
-    for eigenvalue in ["−14.07838969", "−0.7753418822", "4.464867714", "−0.3228664290"] {
+    for eigenvalue in [
+        "−14.07838969",
+        "−0.7753418822",
+        "4.464867714",
+        "−0.3228664290",
+    ] {
         assert!(text.contains(eigenvalue), "{eigenvalue} missing:\n{text}");
     }
     assert!(text.contains("asymptotically stable"));
