@@ -303,7 +303,13 @@ impl Analysis {
             // A sampled run has no output limit and no caller to halt it.
             other => RunEnd::Failed(format!("at t = {}: {}", run.t, other.word())),
         };
-        let (extras, balance) = self.plot_extras(&run);
+        // The energy balance and the outputs are read off Lagrange's equations, which a run
+        // on Kane's route goes without (their derivation is what it avoids).
+        let (extras, balance) = if simulation.by_kane() {
+            (report::PlotExtras::default(), None)
+        } else {
+            self.plot_extras(&run)
+        };
         let figure = figures.map(|f| {
             let file = format!("{}-motion.{}", f.stem, f.extension);
             let (reactions, rows) = self.rows_with_reactions(&simulation, &run.rows);

@@ -247,3 +247,22 @@ fn the_bicycle_is_solved_by_kane_without_trying_lagrange() {
     assert!(json["report"].is_object());
     assert_eq!(a.derivations(), 0);
 }
+
+#[test]
+fn a_bicycle_with_a_simulate_statement_has_its_run_in_the_solution() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/whipple-bicycle.lag");
+    let text = std::fs::read_to_string(path).expect("the example reads");
+    let a = Analysis::from_text(&format!("{text}\ninitial phi' = 0.1\nsimulate to 0.5\n"))
+        .expect("the model loads");
+    let solution = a.solution(None).expect("it solves");
+    let simulation = (solution.document.sections.iter())
+        .find(|s| s.title == "Simulation")
+        .expect("a simulation section");
+    let written = format!("{:?}", simulation.blocks);
+    assert!(
+        written.contains("dop853") && written.contains("t = 0.5"),
+        "{written}"
+    );
+    // Neither the run nor its plot's extras went by Lagrange's equations.
+    assert_eq!(a.derivations(), 0);
+}
