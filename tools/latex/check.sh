@@ -14,9 +14,6 @@ for model in examples/*.lag examples/seed/*.lag; do
     name=$(basename "$model" .lag)
     # The four-bar's reactions take minutes to be refused (docs/performance.md).
     [ "$name" = four-bar ] && continue
-    # The Whipple bicycle's equations do not expand in minutes; it is linearized by Kane's
-    # method (issue 18), which `solve` does not use yet.
-    [ "$name" = whipple-bicycle ] && continue
     dir="$work/$name"
     if ! "$binary" solve --format tex --out "$dir" "$model" >/dev/null 2>"$dir.err"; then
         code=$?

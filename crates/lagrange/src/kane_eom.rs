@@ -4,7 +4,9 @@
 //! Lagrange's equations where both apply. Over the size limit (the Whipple bicycle), the
 //! reduced mass matrix and forcing at the initial state instead.
 
-use mechanics::kane::{Agreement, KaneEquations, KaneError, KaneSystem, Reduced, SpeedSplit};
+use mechanics::kane::{
+    Agreement, KaneEquations, KaneError, KaneMotion, KaneSystem, Reduced, SpeedSplit,
+};
 use serde_json::{json, Value};
 
 use crate::{cas, Analysis, Error};
@@ -107,16 +109,15 @@ impl Analysis {
         why: KaneError,
     ) -> Result<KaneEom, Error> {
         let coordinates = system.coordinates().to_vec();
-        let q = coordinates
-            .iter()
-            .map(|c| self.initial_value(c, false))
-            .collect::<Result<Vec<f64>, Error>>()?;
-        let split = system.eom_split(&q, values)?;
-        let u = split
-            .independent
-            .iter()
-            .map(|j| self.initial_value(&coordinates[*j], true))
-            .collect::<Result<Vec<f64>, Error>>()?;
+        // The state a run starts from: the holonomically fixed coordinates on their
+        // constraints, the rates the model gives kept and the others from the constraints
+        // (a bicycle given only `x' = v` has its wheels spinning).
+        let motion = self.steady_motion()?;
+        let start = KaneMotion::new(system.clone(), values.to_vec(), &motion.configuration, 0.0)?;
+        let state = start.initial_state(&motion.rates, 0.0)?;
+        let q = start.configuration().to_vec();
+        let split = start.split().clone();
+        let u = state[start.free().len()..].to_vec();
         let reduced = system.reduced(&split, &q, &u, 0.0, values)?;
         Ok(KaneEom::Numeric {
             why,

@@ -73,6 +73,8 @@ mod figure;
 mod floquet;
 mod formats;
 mod kane_eom;
+mod kane_motion;
+mod kane_solution;
 mod modes;
 mod output;
 mod plot_extras;

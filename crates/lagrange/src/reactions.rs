@@ -63,7 +63,7 @@ impl Reactions {
 pub(crate) const NUMERIC_SENTENCE: &str = "the reactions are evaluated numerically, state by state (their closed form would be large; the closed-form route derives it)";
 
 /// Whether a request is for a force that can only push or pull.
-fn one_sided(request: &ReactionRequest) -> bool {
+pub(crate) fn one_sided(request: &ReactionRequest) -> bool {
     matches!(request, ReactionRequest::Release(r) if r.kind.is_unilateral() || r.normal.is_some())
 }
 

@@ -420,7 +420,11 @@ impl Analysis {
     /// column; one the caller gave stays as it is. A setting that is wrong with another
     /// (an end time equal to the start, a span too long for its output step) points at the
     /// first of them that the statement gave.
-    fn locate_setting(&self, error: SimulationError, options: &SimulationOptions) -> Error {
+    pub(crate) fn locate_setting(
+        &self,
+        error: SimulationError,
+        options: &SimulationOptions,
+    ) -> Error {
         type Pick = fn(&model::Simulation) -> Option<&model::Expr>;
         let from: (bool, Pick) = (options.t_start.is_some(), |s| s.from.as_ref());
         let to: (bool, Pick) = (options.t_end.is_some(), |s| s.to.as_ref());
@@ -477,6 +481,23 @@ impl Analysis {
     /// # Errors
     /// As [`Analysis::settings`] and [`Analysis::equations`], or a [`Error::Simulation`].
     pub fn simulation(&self, options: &SimulationOptions) -> Result<Simulation, Error> {
+        self.simulation_by(self.simulation_method(), options)
+    }
+
+    /// A prepared run of the equations `method` names: Lagrange's (as
+    /// [`Analysis::simulation`] prepares for most models) or Kane's reduced equations
+    /// ([`Analysis::kane_simulation`]); the two routes give the same columns.
+    ///
+    /// # Errors
+    /// As [`Analysis::simulation`] or [`Analysis::kane_simulation`].
+    pub fn simulation_by(
+        &self,
+        method: crate::Method,
+        options: &SimulationOptions,
+    ) -> Result<Simulation, Error> {
+        if method == crate::Method::Kane {
+            return self.kane_simulation(options);
+        }
         let settings = self.settings(options)?;
         let equations = self.equations()?;
         let mut stop_events: Vec<StopEvent> = options
@@ -534,17 +555,21 @@ impl Analysis {
         values: &[Vec<f64>],
         on_done: &(dyn Fn() + Sync),
     ) -> Result<Vec<Result<SweepRun, Error>>, Error> {
-        // Derived (and the contacts found) once, before the runs share the analysis.
-        self.equations()?;
-        if !options.through_contact_loss {
-            self.one_sided_contacts()?;
+        // Derived (and the contacts found) once, before the runs share the analysis; Kane's
+        // route derives nothing symbolic.
+        let method = self.simulation_method();
+        if method == crate::Method::Lagrange {
+            self.equations()?;
+            if !options.through_contact_loss {
+                self.one_sided_contacts()?;
+            }
         }
         let one = |row: &Vec<f64>| -> Result<SweepRun, Error> {
             let mut analysis = self.clone();
             for (name, value) in names.iter().zip(row) {
                 analysis.set_value(name, *value)?;
             }
-            let mut simulation = analysis.simulation(options)?;
+            let mut simulation = analysis.simulation_by(method, options)?;
             let mut last = Vec::new();
             let outcome = simulation.run(&mut |r| {
                 last.clear();

@@ -56,6 +56,11 @@ impl Analysis {
     /// later parts (equilibria, simulation, reactions) say in the document why they are
     /// missing.
     pub fn solution(&self, figures: Option<&Figures>) -> Result<Solution, Error> {
+        // Checked first, in milliseconds: the Lagrange route of such a model would take
+        // seconds to reach its work limit.
+        if self.simulation_method() == crate::Method::Kane {
+            return self.kane_solution(figures);
+        }
         let equations = self.equations()?;
         let system = self.system();
         let notation = Notation::of(system);
@@ -164,7 +169,7 @@ impl Analysis {
 
     /// The model's problem statement ("Problem", one paragraph per `problem` statement) and
     /// its notes ("Notes on the model", a list), before the solution proper.
-    fn prose_sections(&self) -> Vec<Section> {
+    pub(crate) fn prose_sections(&self) -> Vec<Section> {
         let Some(source) = self.source() else {
             return Vec::new();
         };
@@ -191,6 +196,9 @@ impl Analysis {
     /// # Errors
     /// As [`Analysis::solution`].
     pub fn solution_json(&self, solution: &Solution) -> Result<serde_json::Value, Error> {
+        if self.simulation_method() == crate::Method::Kane {
+            return self.kane_solution_json(solution);
+        }
         let mut value = report::eom_json(self.system(), self.equations()?);
         if let Some(object) = value.as_object_mut() {
             object.insert("report".into(), solution.document.to_json());
@@ -202,7 +210,7 @@ impl Analysis {
     /// (`STEM.svg`, or `STEM.png` for LaTeX), and for an SVG document with a `simulate`
     /// statement the animation of the motion (`STEM.html`), linked. What cannot be drawn
     /// or written is said in the section instead.
-    fn figure_part(&self, figures: &Figures, section: &mut Section) {
+    pub(crate) fn figure_part(&self, figures: &Figures, section: &mut Section) {
         let mut blocks = Vec::new();
         let file = format!("{}.{}", figures.stem, figures.extension);
         let written = self
@@ -261,7 +269,7 @@ impl Analysis {
     }
 
     /// The "Simulation" section: the model's own settings, run once.
-    fn simulation_part(&self, figures: Option<&Figures>) -> Section {
+    pub(crate) fn simulation_part(&self, figures: Option<&Figures>) -> Section {
         let mut options = SimulationOptions::default();
         if let Ok(settings) = self.settings(&options) {
             // Rows at the accepted steps are far apart with an 8th-order method, and the plot
@@ -298,7 +306,13 @@ impl Analysis {
             // A sampled run has no output limit and no caller to halt it.
             other => RunEnd::Failed(format!("at t = {}: {}", run.t, other.word())),
         };
-        let (extras, balance) = self.plot_extras(&run);
+        // The energy balance and the outputs are read off Lagrange's equations, which a run
+        // on Kane's route goes without (their derivation is what it avoids).
+        let (extras, balance) = if simulation.by_kane() {
+            (report::PlotExtras::default(), None)
+        } else {
+            self.plot_extras(&run)
+        };
         let figure = figures.map(|f| {
             let file = format!("{}-motion.{}", f.stem, f.extension);
             let (reactions, rows) = self.rows_with_reactions(&simulation, &run.rows);
@@ -337,6 +351,9 @@ impl Analysis {
         simulation: &simulation::Simulation,
         rows: &[Vec<f64>],
     ) -> (Vec<String>, Option<Vec<Vec<f64>>>) {
+        if simulation.by_kane() {
+            return (Vec::new(), None);
+        }
         let Ok(Some(probe)) = self.reaction_probe() else {
             return (Vec::new(), None);
         };

@@ -90,8 +90,14 @@ impl Analysis {
         }
         let simulation = self.simulation(options)?;
         let open = |path: &Option<PathBuf>| path.as_deref().map(create).transpose();
+        // A run on Kane's route has no multipliers to evaluate reactions with.
+        let reactions = if simulation.by_kane() {
+            Ok(None)
+        } else {
+            self.reaction_probe()
+        };
         Ok(PreparedRun {
-            reactions: self.reaction_probe(),
+            reactions,
             csv: open(&files.csv)?,
             events: open(&files.events)?,
             summary: open(&files.summary)?,

@@ -8,6 +8,7 @@ pub mod reaction_working;
 mod reactions;
 pub mod solution;
 pub mod solution_equilibria;
+pub mod solution_kane;
 pub mod solution_reactions;
 pub mod solution_simulation;
 

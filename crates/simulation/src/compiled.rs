@@ -271,7 +271,10 @@ fn compile_tree(
 /// declaration order, eliminated coordinates substituted, rows that vanish dropped.
 /// The tapes' input layout `[q, q̇, t, parameters…]`, and the buffer with the parameters'
 /// values in place.
-fn input_layout(names: &[String], parameters: &[(String, f64)]) -> (Vec<Symbol>, Vec<f64>) {
+pub(crate) fn input_layout(
+    names: &[String],
+    parameters: &[(String, f64)],
+) -> (Vec<Symbol>, Vec<f64>) {
     let n = names.len();
     let mut inputs: Vec<Symbol> = Vec::with_capacity(2 * n + 1 + parameters.len());
     let mut values = vec![0.0; 2 * n + 1];
@@ -292,13 +295,13 @@ fn input_layout(names: &[String], parameters: &[(String, f64)]) -> (Vec<Symbol>,
 /// cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about n-fold.
 /// Values enter as floats, never as exact integers: the normal form would expand
 /// trigonometry of small integer multiples (`cos(ω t)` with an integer ω).
-struct Folder {
+pub(crate) struct Folder {
     timed: Vec<(Expr, Expr)>,
     constants: Vec<(Expr, Expr)>,
 }
 
 impl Folder {
-    fn new(parameters: &[(String, f64)], timed_inputs: &[(String, Expr)]) -> Folder {
+    pub(crate) fn new(parameters: &[(String, f64)], timed_inputs: &[(String, Expr)]) -> Folder {
         Folder {
             timed: timed_inputs
                 .iter()
@@ -316,7 +319,7 @@ impl Folder {
         e.subs(&self.timed).subs(&self.constants).normal()
     }
 
-    fn all(&self, es: &[Expr]) -> Vec<Expr> {
+    pub(crate) fn all(&self, es: &[Expr]) -> Vec<Expr> {
         es.iter().map(|e| self.one(*e)).collect()
     }
 }

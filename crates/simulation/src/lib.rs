@@ -21,6 +21,7 @@
 
 mod compiled;
 mod forms;
+mod kane;
 mod run;
 
 pub use run::{

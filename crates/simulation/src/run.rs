@@ -6,6 +6,7 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use cas::ParseContext;
+use mechanics::kane::{KaneMotion, KaneSystem};
 use mechanics::{Equations, System};
 use std::cell::RefCell;
 
@@ -16,6 +17,7 @@ use numeric::{
 
 use crate::compiled::Compiled;
 use crate::forms::{Canonical, SecondOrder};
+use crate::kane::{KaneOde, KaneRoute, KaneRows};
 
 /// An integration method, by the name the user gives.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -379,6 +381,18 @@ pub enum SimulationError {
     /// The initial state could not be made consistent, or the equations fail there.
     #[error("at the initial state: {0}")]
     Initial(RhsError),
+    /// Kane's route could not be set up: the speeds, the initial configuration on the
+    /// holonomic constraints or the initial rates ([`Simulation::prepare_kane`]).
+    #[error("on Kane's route: {0}")]
+    Kane(mechanics::kane::KaneError),
+    /// Reactions by multipliers were asked of a run on Kane's route, whose reduced equations
+    /// eliminate the constraints instead of keeping multipliers.
+    #[error("the run is on Kane's route, whose reduced equations have no multipliers")]
+    NoMultipliers,
+    /// A run on Kane's route was asked for something it does not do (an input given as a
+    /// function of time, the symplectic method).
+    #[error("Kane's route does not take {0}")]
+    KaneUnsupported(&'static str),
 }
 
 /// A symbol the compiled equations lack: a coordinate's second or higher derivative is the
@@ -434,7 +448,7 @@ pub struct Drift {
 
 impl Drift {
     /// Takes in one state's residuals; NaN (unknown) stays NaN, which `max` would drop.
-    fn note(&mut self, position: f64, velocity: f64) {
+    pub(crate) fn note(&mut self, position: f64, velocity: f64) {
         let keep = |largest: f64, x: f64| {
             if largest.is_nan() || x.is_nan() {
                 f64::NAN
@@ -475,7 +489,7 @@ impl InitialCorrection {
 /// A prepared simulation: compiled equations, initial state, settings.
 #[derive(Debug, Clone)]
 pub struct Simulation {
-    compiled: Compiled,
+    route: Route,
     coordinates: Vec<String>,
     method: MethodName,
     t_start: f64,
@@ -487,6 +501,15 @@ pub struct Simulation {
     stop_events: Vec<StopEvent>,
     record_when: Vec<String>,
     drift: Drift,
+}
+
+/// How the right-hand side is evaluated.
+#[derive(Debug, Clone)]
+enum Route {
+    /// The derived equations `M q̈ = f − Aᵀλ`, compiled.
+    Lagrange(Box<Compiled>),
+    /// Kane's reduced equations, evaluated numerically ([`Simulation::prepare_kane`]).
+    Kane(Box<KaneRoute>),
 }
 
 /// Initial states that differ by less than this (relative to their size) are the same.
@@ -551,7 +574,7 @@ impl Simulation {
         let (initial_energy, _) = compiled.energy_and_drift();
 
         Ok(Simulation {
-            compiled,
+            route: Route::Lagrange(Box::new(compiled)),
             coordinates,
             method: settings.method,
             t_start,
@@ -573,14 +596,104 @@ impl Simulation {
         })
     }
 
+    /// Sets up a run on Kane's route: the reduced equations `M_r u̇ = f_r` of `system`
+    /// evaluated numerically at each state ([`mechanics::kane::KaneMotion`]), for systems
+    /// whose equations with multipliers are too large to derive. `setup.initial` holds the
+    /// coordinates, then the rates; `given[j]` says whether rate `j` was given: the speeds
+    /// give those exactly and the others as the constraints fix them (as small as they
+    /// allow where they leave them free). The holonomically fixed coordinates are moved onto
+    /// their constraints by Newton's method. One-sided contacts are not watched here.
+    ///
+    /// # Errors
+    /// As [`Simulation::prepare`]; [`SimulationError::Kane`] when no speed is free, the
+    /// holonomic constraints have no solution near the initial configuration or the given
+    /// rates break the constraints; [`SimulationError::KaneUnsupported`] for `gauss` or an
+    /// input given as a function of time.
+    pub fn prepare_kane(
+        system: &System,
+        settings: &Settings,
+        setup: Setup,
+        given: &[bool],
+    ) -> Result<Simulation, SimulationError> {
+        settings.validate()?;
+        if setup.stop_events.is_empty() {
+            settings.check_limits()?;
+        }
+        let coordinates = system.coordinates().to_vec();
+        let n = coordinates.len();
+        if setup.initial.len() != 2 * n || given.len() != n {
+            return Err(SimulationError::InitialState {
+                given: setup.initial.len(),
+                needed: 2 * n,
+            });
+        }
+        if settings.method == MethodName::Gauss {
+            return Err(SimulationError::KaneUnsupported(
+                "the symplectic method gauss (use dop853 or dopri5)",
+            ));
+        }
+        if !setup.timed_inputs.is_empty() {
+            return Err(SimulationError::KaneUnsupported(
+                "inputs given as functions of time",
+            ));
+        }
+        let t_start = settings.t_start;
+        let route = kane_route(system, &coordinates, &setup, given, t_start)?;
+        let mut initial = route.start_full.clone();
+        // The rates not given are not the user's: they are reported as found, not as moved.
+        let mut asked = setup.initial.clone();
+        for (j, g) in given.iter().enumerate() {
+            if !g {
+                asked[n + j] = initial[n + j];
+            }
+        }
+        let moved = asked
+            .iter()
+            .zip(&initial)
+            .any(|(a, b)| (a - b).abs() > MOVED * (1.0 + a.abs()));
+        let correction = moved.then(|| InitialCorrection {
+            given: asked,
+            corrected: initial.clone(),
+        });
+        let initial_energy = route.energy(t_start, &initial);
+        initial.truncate(2 * n);
+        Ok(Simulation {
+            route: Route::Kane(Box::new(route)),
+            coordinates,
+            method: settings.method,
+            t_start,
+            t_end: settings.t_end,
+            options: IntegratorOptions {
+                rtol: settings.rtol,
+                atol: settings.atol,
+                step: settings.step,
+                output_step: settings.output_step,
+                max_steps: settings.max_steps,
+                max_outputs: settings.max_rows,
+            },
+            initial,
+            correction,
+            initial_energy,
+            stop_events: setup.stop_events,
+            record_when: setup.record_when,
+            drift: Drift::default(),
+        })
+    }
+
+    /// Whether the run goes by Kane's reduced equations ([`Simulation::prepare_kane`]).
+    #[must_use]
+    pub fn by_kane(&self) -> bool {
+        matches!(self.route, Route::Kane(_))
+    }
+
     /// The stop event of an [`numeric::StopReason::Event`]'s index.
     #[must_use]
     pub fn stop_event(&self, index: usize) -> Option<&StopEvent> {
         // The tape's stopping events, its recorded ones, then the numeric contacts.
-        let (stopping, tape) = (
-            self.compiled.stopping_events,
-            self.compiled.tape_event_count(),
-        );
+        let (stopping, tape) = match &self.route {
+            Route::Lagrange(c) => (c.stopping_events, c.tape_event_count()),
+            Route::Kane(k) => (k.stopping_events, k.event_outputs),
+        };
         match index {
             i if i < stopping => self.stop_events.get(i),
             i if i >= tape => self.stop_events.get(stopping + (i - tape)),
@@ -616,7 +729,10 @@ impl Simulation {
     /// `None` without constraints kept with multipliers.
     #[must_use]
     pub fn drift(&self) -> Option<Drift> {
-        (self.compiled.m > 0).then_some(self.drift)
+        match &self.route {
+            Route::Lagrange(c) => (c.m > 0).then_some(self.drift),
+            Route::Kane(_) => Some(self.drift),
+        }
     }
 
     /// The multipliers `λ` of `M q̈ + Aᵀλ = f`, `A q̈ = b` at time `t` and state `(q, q̇)`,
@@ -634,10 +750,13 @@ impl Simulation {
                 needed: 2 * n,
             });
         }
-        if self.compiled.m == 0 {
+        let Route::Lagrange(compiled) = &mut self.route else {
+            return Err(SimulationError::NoMultipliers);
+        };
+        if compiled.m == 0 {
             return Ok(Vec::new());
         }
-        SecondOrder::new(&mut self.compiled)
+        SecondOrder::new(compiled)
             .multipliers(t, state)
             .map_err(SimulationError::Initial)
     }
@@ -670,9 +789,12 @@ impl Simulation {
     /// the right-hand side goes by the tree, see [`Simulation::rhs_by_tree`]).
     #[must_use]
     pub fn rhs_instructions(&self) -> usize {
-        match &self.compiled.tree {
-            Some(tree) if tree.preferred => tree.evaluator.instruction_count(),
-            _ => self.compiled.dynamics.instruction_count(),
+        match &self.route {
+            Route::Lagrange(c) => match &c.tree {
+                Some(tree) if tree.preferred => tree.evaluator.instruction_count(),
+                _ => c.dynamics.instruction_count(),
+            },
+            Route::Kane(k) => k.motion.system().size(),
         }
     }
 
@@ -682,15 +804,20 @@ impl Simulation {
     /// the dense solve at sample states.
     #[must_use]
     pub fn rhs_by_tree(&self) -> bool {
-        self.compiled.tree.as_ref().is_some_and(|t| t.preferred)
+        match &self.route {
+            Route::Lagrange(c) => c.tree.as_ref().is_some_and(|t| t.preferred),
+            Route::Kane(_) => false,
+        }
     }
 
     /// Switches the right-hand side to the tree (`true`) or to the dense solve (`false`), for
     /// benchmarks that compare the routes in one process; returns whether it now goes by the
     /// tree (never where the model has none).
     pub fn set_rhs_by_tree(&mut self, by_tree: bool) -> bool {
-        if let Some(tree) = self.compiled.tree.as_mut() {
-            tree.preferred = by_tree;
+        if let Route::Lagrange(c) = &mut self.route {
+            if let Some(tree) = c.tree.as_mut() {
+                tree.preferred = by_tree;
+            }
         }
         self.rhs_by_tree()
     }
@@ -701,18 +828,23 @@ impl Simulation {
     /// elimination fails at the state): the two routes side by side, for tests and
     /// benchmarks. `None` when `state` does not hold two numbers per coordinate.
     pub fn rhs_both_routes(&mut self, t: f64, state: &[f64]) -> Option<RhsRoutes> {
-        if state.len() != 2 * self.compiled.n {
+        let Route::Lagrange(compiled) = &mut self.route else {
+            return None;
+        };
+        if state.len() != 2 * compiled.n {
             return None;
         }
-        let mut system = SecondOrder::new(&mut self.compiled);
+        let mut system = SecondOrder::new(compiled);
         Some(system.both_routes(t, state))
     }
 
     /// Hands `body` the right-hand side `(t, (q, q̇)) → (q̇, q̈)` as the integrator sees it
     /// (buffers allocated once, outside `body`), for benchmarks and checks.
     pub fn with_rhs<R>(&mut self, body: impl FnOnce(&mut dyn OdeSystem) -> R) -> R {
-        let mut system = SecondOrder::new(&mut self.compiled);
-        body(&mut system)
+        match &mut self.route {
+            Route::Lagrange(compiled) => body(&mut SecondOrder::new(compiled)),
+            Route::Kane(route) => body(&mut KaneOde { route }),
+        }
     }
 
     /// The integrator's settings: tolerances, step, output step.
@@ -755,13 +887,27 @@ impl Simulation {
         let n = self.coordinates.len();
         let method = self.method;
         let (t0, t1, options) = (self.t_start, self.t_end, self.options);
-        let stopping = self.compiled.stopping_events;
+        let compiled = match &mut self.route {
+            Route::Lagrange(compiled) => compiled,
+            Route::Kane(route) => {
+                let (outcome, drift) = run_kane(
+                    route,
+                    (method, t0, t1, &options),
+                    self.initial_energy,
+                    on_row,
+                    on_crossing,
+                );
+                self.drift = drift;
+                return outcome;
+            }
+        };
+        let stopping = compiled.stopping_events;
         // Rows and crossings are both written by the row maker; the integrator calls one
         // callback at a time, so they share it through a RefCell.
-        let rows = RefCell::new(RowMaker::new(&self.compiled, self.initial_energy));
+        let rows = RefCell::new(RowMaker::new(compiled, self.initial_energy));
         let outcome = match method {
             MethodName::Dopri5 | MethodName::Dop853 | MethodName::Sdirk => {
-                let mut system = SecondOrder::new(&mut self.compiled);
+                let mut system = SecondOrder::new(compiled);
                 integrate_observed(
                     &mut system,
                     match method {
@@ -786,7 +932,7 @@ impl Simulation {
             }
             MethodName::Gauss => {
                 // p = M q̇ + p₀ at the start.
-                let mut converter = self.compiled.clone();
+                let mut converter = (**compiled).clone();
                 let mut y0 = self.initial.clone();
                 {
                     let c = &mut converter;
@@ -809,7 +955,7 @@ impl Simulation {
                         .velocity(t, y)
                         .unwrap_or_else(|_| vec![f64::NAN; n])
                 };
-                let mut system = Canonical::new(&mut self.compiled);
+                let mut system = Canonical::new(compiled);
                 integrate_observed(
                     &mut system,
                     Method::Gauss,
@@ -836,6 +982,82 @@ impl Simulation {
         self.drift = rows.into_inner().drift;
         outcome
     }
+}
+
+/// Kane's route compiled for `setup`, its initial state found and the equations evaluated
+/// there once (so that a state where they cannot be solved fails before the run).
+fn kane_route(
+    system: &System,
+    coordinates: &[String],
+    setup: &Setup,
+    given: &[bool],
+    t_start: f64,
+) -> Result<KaneRoute, SimulationError> {
+    let n = coordinates.len();
+    let names: Vec<String> = setup.values.iter().map(|(name, _)| name.clone()).collect();
+    let values: Vec<f64> = setup.values.iter().map(|(_, v)| *v).collect();
+    let kane = KaneSystem::new(system, &names).map_err(SimulationError::Kane)?;
+    let motion = KaneMotion::new(kane, values, &setup.initial[..n], t_start)
+        .map_err(SimulationError::Kane)?;
+    let rates: Vec<Option<f64>> = given
+        .iter()
+        .zip(&setup.initial[n..])
+        .map(|(g, v)| g.then_some(*v))
+        .collect();
+    let start = motion
+        .initial_state(&rates, t_start)
+        .map_err(SimulationError::Kane)?;
+    let (events, stopping_events) = compile_events(coordinates, setup)?;
+    let mut route = KaneRoute::new(motion, coordinates, &setup.values, &events, stopping_events)
+        .map_err(|e| missing_value(e, coordinates))?;
+    let mut probe = vec![0.0; start.len()];
+    KaneOde { route: &mut route }
+        .rhs(t_start, &start, &mut probe)
+        .map_err(SimulationError::Initial)?;
+    route.start_full = route
+        .full(t_start, &start)
+        .map_err(SimulationError::Initial)?;
+    route.start = start;
+    Ok(route)
+}
+
+/// Integrates on Kane's route from its start, handing out rows and crossings as
+/// [`Simulation::run_until`] does; returns the outcome and the constraints' drift. The route
+/// itself is left as prepared (Newton's starts move on a copy).
+fn run_kane(
+    prepared: &KaneRoute,
+    (method, t0, t1, options): (MethodName, f64, f64, &IntegratorOptions),
+    energy0: f64,
+    on_row: &mut dyn FnMut(&[f64]) -> ControlFlow<()>,
+    on_crossing: &mut dyn FnMut(RecordedCrossing<'_>),
+) -> (Outcome, Drift) {
+    let mut route = prepared.clone();
+    let stopping = route.stopping_events;
+    let rows = RefCell::new(KaneRows::new(prepared, energy0));
+    let start = route.start.clone();
+    let method = match method {
+        MethodName::Sdirk => Method::Sdirk,
+        MethodName::Dopri5 => Method::Dopri5,
+        _ => Method::Dop853,
+    };
+    let outcome = integrate_observed(
+        &mut KaneOde { route: &mut route },
+        method,
+        t0,
+        &start,
+        t1,
+        options,
+        &mut |t, y| on_row(rows.borrow_mut().row(t, y)),
+        &mut |c: Crossing<'_>| {
+            let mut maker = rows.borrow_mut();
+            on_crossing(RecordedCrossing {
+                event: c.index.saturating_sub(stopping),
+                rising: c.rising,
+                row: maker.row(c.t, c.y),
+            });
+        },
+    );
+    (outcome, rows.into_inner().drift)
 }
 
 /// Makes output rows `[t, q…, q̇…, energy error, constraint drift]` from states, with its own

@@ -416,7 +416,7 @@ impl KaneSystem {
 
     /// The geometry as a Taylor series to second order in time at `q̈ = 0`
     /// (`x + ẋ ε₁ + ẋ ε₂ + ẍ ε₁ε₂`), and the constraint rows' bias `Ȧ q̇ + ḃ`.
-    fn jet<T: Scalar>(
+    pub(super) fn jet<T: Scalar>(
         &self,
         q: &[T],
         qd: &[T],

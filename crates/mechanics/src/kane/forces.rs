@@ -148,3 +148,36 @@ impl KaneSystem {
         })
     }
 }
+
+impl KaneSystem {
+    /// The energy `T + V` at `(q, q̇, t)`: the bodies' and particles' kinetic energy
+    /// `½ m v·v + ½ ω·(R I Rᵀ) ω`, gravity's potential `−m g·r` and the loads' potentials.
+    /// Forces that have no potential do work on it, so it is conserved only without them.
+    pub fn energy(&self, q: &[f64], qd: &[f64], t: f64, values: &[f64]) -> f64 {
+        let (jet, _) = self.jet(q, qd, t, values);
+        let value: Vec<f64> = jet.iter().map(|x| x.re.re).collect();
+        let rate: Vec<f64> = jet.iter().map(|x| x.re.eps).collect();
+        let g = v3(&value, self.gravity);
+        let mut energy = 0.0;
+        for b in 0..self.bodies {
+            let o = b * BODY;
+            let (mass, r, inertia) = (value[o], mat(&value, o + 4), mat(&value, o + 13));
+            let v = v3(&rate, o + 1);
+            let w = angular(&mat(&rate, o + 4), &r);
+            let iw = inertia_times(&r, &inertia, &w);
+            energy +=
+                0.5 * mass * dot(&v, &v) + 0.5 * dot(&w, &iw) - mass * dot(&g, &v3(&value, o + 1));
+        }
+        for p in 0..self.particles {
+            let o = self.bodies * BODY + p * PARTICLE;
+            let v = v3(&rate, o + 1);
+            energy += value[o] * (0.5 * dot(&v, &v) - dot(&g, &v3(&value, o + 1)));
+        }
+        for load in &self.loads {
+            if let LoadSlot::Potential(o) = load {
+                energy += value[*o];
+            }
+        }
+        energy
+    }
+}

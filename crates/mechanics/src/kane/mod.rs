@@ -23,6 +23,7 @@ mod agree;
 mod dynamics;
 mod forces;
 mod linear;
+mod motion;
 mod program;
 mod rank;
 mod scalar;
@@ -35,6 +36,7 @@ mod verdict;
 
 pub use agree::Agreement;
 pub use dynamics::{KaneSystem, Reduced, SpeedSplit};
+pub use motion::KaneMotion;
 pub use program::{Program, Variables};
 pub use rank::constraint_rank;
 pub use scalar::{Dual, Scalar};

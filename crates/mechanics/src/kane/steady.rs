@@ -226,7 +226,7 @@ impl KaneSystem {
     /// Newton's method on the holonomic rows `rows` for the coordinates `unknown`; the
     /// Jacobian is taken at the values, which is exact at the solution, so the derivatives
     /// that `T` carries come out exact after the last steps.
-    fn newton<T: Scalar>(
+    pub(super) fn newton<T: Scalar>(
         &self,
         q: &mut [T],
         unknown: &[usize],
