@@ -61,6 +61,10 @@ impl Deriver {
             return dn;
         }
         let dd = self.poly(&r.den);
+        if dn.is_zero() && dd.is_zero() {
+            // Free of the variable: no quotient rule (it would square `D` to divide zero).
+            return Rf::zero();
+        }
         // (N/D)' = (N' D − N D') / D²
         let num = dn
             .mul(&Rf::from_poly(r.den.clone()))
@@ -408,6 +412,23 @@ fn symbols_in(e: Expr) -> SmallVec<[Symbol; 4]> {
     found
 }
 
+/// Whether the symbol `s` occurs in `e` (each shared node visited once).
+fn mentions(e: Expr, s: Symbol) -> bool {
+    let mut seen: rustc_hash::FxHashSet<Expr> = rustc_hash::FxHashSet::default();
+    let mut stack: SmallVec<[Expr; 16]> = SmallVec::new();
+    stack.push(e);
+    while let Some(x) = stack.pop() {
+        if let Some(found) = x.as_symbol() {
+            if found == s {
+                return true;
+            }
+        } else if seen.insert(x) {
+            stack.extend_from_slice(x.children());
+        }
+    }
+    false
+}
+
 /// `∂r/∂var` of a working form.
 pub(crate) fn partial_derivative_rf(r: &Rf, var: Symbol) -> Rf {
     Deriver::new(Wrt::Partial(Expr::from_symbol(var))).rf(r)
@@ -426,6 +447,11 @@ impl Expr {
     pub fn diff(self, var: Symbol) -> Expr {
         if let Some(d) = remembered_partial(self, var) {
             return d;
+        }
+        if !mentions(self, var) {
+            // Exactly what the derivation below gives, without walking every atom's
+            // derivative: the rest equations' users ask about every unknown in every equation.
+            return Expr::zero();
         }
         let mut d = Deriver::new(Wrt::Partial(Expr::from_symbol(var)));
         let r = d.expr(self);
