@@ -543,6 +543,28 @@ mod tests {
     }
 
     #[test]
+    fn remembered_and_unmentioned_derivatives_are_the_derivation_s() {
+        let (x, y) = (Expr::symbol("x"), Expr::symbol("y"));
+        let (sx, sy) = (x.as_symbol().unwrap(), y.as_symbol().unwrap());
+        let e = ((x.powi(2) + 1).sqrt() * y.sin() / (x + y)).normal();
+        let first = e.diff(sx);
+        // The second call is answered from the memo: the same expression, still the derivative.
+        assert_eq!(e.diff(sx), first);
+        let expected = (x / (x.powi(2) + 1).sqrt() * y.sin() / (x + y)
+            - (x.powi(2) + 1).sqrt() * y.sin() / (x + y).powi(2))
+        .normal();
+        assert!(first.equals(expected), "{first}");
+        // A symbol the expression does not mention: zero without a derivation.
+        let z = Expr::symbol("z").as_symbol().unwrap();
+        assert!(e.diff(z).is_zero());
+        assert!(!e.diff(sy).is_zero());
+        // An angle that is a quotient free of the variable has derivative zero (both parts'
+        // derivatives are, so the quotient rule is skipped).
+        let angle = y / (y + 1);
+        assert!((x * angle.sin()).diff(sx).equals(angle.sin()));
+    }
+
+    #[test]
     fn taylor_of_cosine() {
         let x = Expr::symbol("x");
         let s = x.as_symbol().unwrap();

@@ -71,7 +71,10 @@ impl Analysis {
         let Some(Ok(Some(reactions))) = self.reactions.get() else {
             return None;
         };
-        let reaction = reactions.reactions.iter().find(|r| r.name == release.name)?;
+        let reaction = reactions
+            .reactions
+            .iter()
+            .find(|r| r.name == release.name)?;
         Some(reaction.released_equations.clone())
     }
 
@@ -87,7 +90,10 @@ impl Analysis {
                 [Expr::coordinate(u), Expr::rate(u, 1), Expr::rate(u, 2)].map(|x| (x, Expr::zero()))
             })
             .collect();
-        let equations = released.lagrange_lhs().iter().zip(released.generalized_forces());
+        let equations = released
+            .lagrange_lhs()
+            .iter()
+            .zip(released.generalized_forces());
         let at_rest = released
             .coordinates()
             .iter()

@@ -64,7 +64,11 @@ fn newton_step(j: &[f64], f: &[f64], a: &mut Vec<f64>) -> Option<Vec<f64>> {
     }
     for col in 0..n {
         // The last of equal candidates, as `Iterator::max_by` picks it.
-        let pivot = (col..n).max_by(|x, y| a[x * width + col].abs().total_cmp(&a[y * width + col].abs()))?;
+        let pivot = (col..n).max_by(|x, y| {
+            a[x * width + col]
+                .abs()
+                .total_cmp(&a[y * width + col].abs())
+        })?;
         if a[pivot * width + col].abs() < 1e-300 {
             return None;
         }

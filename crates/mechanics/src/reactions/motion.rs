@@ -197,7 +197,10 @@ pub(super) fn residuals(
             *term += *a * motion.multipliers[k];
         }
     }
-    let equations = released.lagrange_lhs().iter().zip(released.generalized_forces());
+    let equations = released
+        .lagrange_lhs()
+        .iter()
+        .zip(released.generalized_forces());
     Ok(released
         .coordinates()
         .iter()
