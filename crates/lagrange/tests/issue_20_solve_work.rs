@@ -33,8 +33,11 @@ fn example(name: &str) -> String {
     std::fs::read_to_string(path).expect("the example")
 }
 
-/// Each release's equations: point, then `(axis, equation)` in order.
-fn released(working: &[Option<Working>]) -> Vec<(String, Vec<(String, Expr)>)> {
+/// Each release's point, then its `(axis, equation)` pairs in order.
+type Released = Vec<(String, Vec<(String, Expr)>)>;
+
+/// Each release's equations.
+fn released(working: &[Option<Working>]) -> Released {
     working
         .iter()
         .filter_map(|w| match w {
@@ -48,7 +51,7 @@ fn released(working: &[Option<Working>]) -> Vec<(String, Vec<(String, Expr)>)> {
 }
 
 /// The working of `text` derived on its own, and after the reactions were derived.
-fn both_ways(text: &str) -> [Vec<(String, Vec<(String, Expr)>)>; 2] {
+fn both_ways(text: &str) -> [Released; 2] {
     let alone = Analysis::from_text(text).expect("the model checks");
     let derived_alone = released(&alone.reaction_working());
     let after = Analysis::from_text(text).expect("the model checks");
