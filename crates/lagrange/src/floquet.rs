@@ -390,6 +390,10 @@ struct Periodic {
     n: usize,
     coordinates: Vec<String>,
     angles: Vec<bool>,
+    /// Whether the equations are affine in the state (`M` free of `q`, `f` affine in `q` and
+    /// `q̇`): then the map over a period is affine too, `x(T) = Φ x₀ + c` with `Φ` the same
+    /// from every start, and its fixed point, when `Φ − I` is invertible, is unique.
+    affine: bool,
     tape: Tape,
     driving: Driving,
     /// The names of the values, in the order of the tape's inputs after `t`.
@@ -455,6 +459,12 @@ impl Periodic {
         for s in &q {
             outputs.extend(mass.iter().map(|m| m.diff(*s).normal()));
         }
+        let state: Vec<Symbol> = q.iter().chain(&v).copied().collect();
+        let derivatives = &outputs[n * n + n..3 * n * n + n];
+        let affine = mass
+            .iter()
+            .chain(derivatives)
+            .all(|e| state.iter().all(|s| !mentions(*e, *s)));
         let mut inputs: Vec<Symbol> = q.iter().chain(&v).copied().collect();
         inputs.push(t);
         let (mut value_names, mut base_values) = (Vec::new(), Vec::new());
@@ -477,6 +487,7 @@ impl Periodic {
             n,
             coordinates: names,
             angles,
+            affine,
             tape,
             driving,
             value_names,
@@ -763,6 +774,12 @@ impl Periodic {
                     found.push(x);
                 }
             }
+            // An affine map's Newton step lands on its one fixed point from any start: once
+            // shooting converged, every other start finds the same orbit again (the damped
+            // oscillator's sixteen shootings were nine tenths of its `solve`; issue 20).
+            if self.affine && !found.is_empty() {
+                break;
+            }
         }
         found
     }
@@ -826,6 +843,14 @@ struct Flow<'a> {
     registers: Vec<f64>,
     outputs: Vec<f64>,
     rtol: f64,
+    /// The right-hand side's work space, kept between calls: `q̈`, the Jacobian's lower half
+    /// (`n × 2n`), one of its columns and the mass matrix being factored. The shooting calls
+    /// the right-hand side tens of thousands of times; allocating these per call was a third
+    /// of `solve`'s time on the damped oscillator (issue 20).
+    acceleration: Vec<f64>,
+    jacobian: Vec<f64>,
+    column: Vec<f64>,
+    factored: Vec<f64>,
 }
 
 impl<'a> Flow<'a> {
@@ -839,6 +864,10 @@ impl<'a> Flow<'a> {
             registers: system.tape.registers(),
             outputs: vec![0.0; system.tape.output_count()],
             rtol,
+            acceleration: vec![0.0; n],
+            jacobian: vec![0.0; 2 * n * n],
+            column: vec![0.0; n],
+            factored: vec![0.0; n * n],
         }
     }
 
@@ -903,40 +932,47 @@ impl OdeSystem for Flow<'_> {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
         let n = self.system.n;
         let m = 2 * n;
-        let out = self.eval(&y[..n], &y[n..m], t).to_vec();
+        self.eval(&y[..n], &y[n..m], t);
+        let Flow {
+            outputs: out,
+            acceleration: acc,
+            jacobian: jac,
+            column: col,
+            factored,
+            ..
+        } = self;
         let (mass, f) = (&out[..n * n], &out[n * n..n * n + n]);
         let dfdq = &out[n * n + n..2 * n * n + n];
         let dfdv = &out[2 * n * n + n..3 * n * n + n];
         let dmdq = &out[3 * n * n + n..];
-        let solve = |rhs: &mut [f64]| -> Result<(), RhsError> {
-            let mut a = mass.to_vec();
-            numeric::solve_in_place(n, &mut a, rhs)
+        // Each solve factors a fresh copy of `M`, as one `solve_in_place` call does: the same
+        // operations, so the same numbers, as before the work space was kept.
+        let mut solve = |rhs: &mut [f64]| -> Result<(), RhsError> {
+            factored.copy_from_slice(mass);
+            numeric::solve_in_place(n, factored, rhs)
                 .map_err(|_| RhsError::SingularMatrix { column: 0 })
         };
-        let mut acc = f.to_vec();
-        solve(&mut acc)?;
+        acc.copy_from_slice(f);
+        solve(acc)?;
         // The Jacobian's lower half, column by column: ∂q̈/∂qⱼ, then ∂q̈/∂q̇ⱼ.
-        let mut jac = vec![0.0; n * m];
         for j in 0..m {
-            let mut col: Vec<f64> = if j < n {
-                (0..n)
-                    .map(|i| {
-                        dfdq[i * n + j]
-                            - (0..n)
-                                .map(|k| dmdq[j * n * n + i * n + k] * acc[k])
-                                .sum::<f64>()
-                    })
-                    .collect()
-            } else {
-                (0..n).map(|i| dfdv[i * n + (j - n)]).collect()
-            };
-            solve(&mut col)?;
+            for (i, c) in col.iter_mut().enumerate() {
+                *c = if j < n {
+                    dfdq[i * n + j]
+                        - (0..n)
+                            .map(|k| dmdq[j * n * n + i * n + k] * acc[k])
+                            .sum::<f64>()
+                } else {
+                    dfdv[i * n + (j - n)]
+                };
+            }
+            solve(col)?;
             for i in 0..n {
                 jac[i * m + j] = col[i];
             }
         }
         dy[..n].copy_from_slice(&y[n..m]);
-        dy[n..m].copy_from_slice(&acc);
+        dy[n..m].copy_from_slice(acc);
         let phi = &y[m..];
         for c in 0..m {
             // Upper half: d(δq)/dt = δq̇.

@@ -44,6 +44,43 @@ impl Analysis {
     /// `E_u − Q_u` at `u = u̇ = ü = 0` for each displacement of the release, in the
     /// constrained system's coordinates.
     fn released_working(&self, release: &Release, equations: &Equations) -> Option<Working> {
+        let at_rest = match self.derived_release(release) {
+            Some(computed) => computed,
+            None => self.released_at_rest(release)?,
+        };
+        let lines = release
+            .displacements
+            .iter()
+            .filter_map(|(u, d)| {
+                let (_, lhs) = at_rest.iter().find(|(q, _)| q == u)?;
+                let lhs = on_constrained(*lhs, equations);
+                let axis = u.rsplit("__").next().unwrap_or(u).to_string();
+                (!lhs.is_zero()).then_some((axis, *d, lhs))
+            })
+            .collect();
+        Some(Working::Released {
+            point: release.point.0.clone(),
+            equations: lines,
+        })
+    }
+
+    /// The released equations at rest that the closed-form reactions already derived (see
+    /// [`mechanics::Reaction::released_equations`]), when they were: deriving the released
+    /// system a second time here was a third of the rolling cone's `solve` (issue 20).
+    fn derived_release(&self, release: &Release) -> Option<Vec<(String, Expr)>> {
+        let Some(Ok(Some(reactions))) = self.reactions.get() else {
+            return None;
+        };
+        let reaction = reactions
+            .reactions
+            .iter()
+            .find(|r| r.name == release.name)?;
+        Some(reaction.released_equations.clone())
+    }
+
+    /// `E_u − Q_u` at `u = u̇ = ü = 0` of each coordinate of the released system, derived here
+    /// (the reactions were evaluated numerically, or not derived).
+    fn released_at_rest(&self, release: &Release) -> Option<Vec<(String, Expr)>> {
         let released = self.derived_quietly(&release.system)?;
         let zero: Vec<(Expr, Expr)> = release
             .displacements
@@ -53,21 +90,17 @@ impl Analysis {
                 [Expr::coordinate(u), Expr::rate(u, 1), Expr::rate(u, 2)].map(|x| (x, Expr::zero()))
             })
             .collect();
-        let lines = release
-            .displacements
+        let equations = released
+            .lagrange_lhs()
             .iter()
-            .filter_map(|(u, d)| {
-                let j = released.coordinates().iter().position(|q| q == u)?;
-                let lhs = released.lagrange_lhs()[j] - released.generalized_forces()[j];
-                let lhs = on_constrained(lhs.subs(&zero), equations);
-                let axis = u.rsplit("__").next().unwrap_or(u).to_string();
-                (!lhs.is_zero()).then_some((axis, *d, lhs))
-            })
+            .zip(released.generalized_forces());
+        let at_rest = released
+            .coordinates()
+            .iter()
+            .zip(equations)
+            .map(|(q, (e, f))| (q.clone(), (*e - *f).subs(&zero)))
             .collect();
-        Some(Working::Released {
-            point: release.point.0.clone(),
-            equations: lines,
-        })
+        Some(at_rest)
     }
 
     /// The equations of the system without an integrable constraint, `E_j − Q_j = Q^R_j`, on

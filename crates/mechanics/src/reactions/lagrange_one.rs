@@ -49,13 +49,19 @@ pub(super) fn release_reaction(
         .cloned()
         .collect();
     let zero = at_rest(&extra);
-    let residuals = residuals(&release.name, &release.system, motion, &zero)?;
+    let residuals = residuals(&release.name, &release.system, motion, &zero, &|q| {
+        extra.iter().any(|(u, _)| u == q)
+    })?;
     let residual_of = |name: &String| {
         residuals
             .iter()
-            .find(|(q, _)| q == name)
-            .map_or_else(Expr::zero, |(_, r)| *r)
+            .find(|r| r.coordinate == *name)
+            .map_or_else(Expr::zero, |r| r.on_motion)
     };
+    let released_equations = residuals
+        .iter()
+        .map(|r| (r.coordinate.clone(), r.at_rest))
+        .collect();
     let lagrange: Vec<Expr> = release
         .displacements
         .iter()
@@ -115,6 +121,7 @@ pub(super) fn release_reaction(
         driving: false,
         methods,
         agreement,
+        released_equations,
     })
 }
 
@@ -158,7 +165,10 @@ pub(super) fn constraint_reaction(
     let (generalized, multipliers) = if rows.is_empty() {
         // Eliminated by integration: the residuals of the system without it are its
         // generalized reaction on every coordinate, the eliminated one included.
-        let generalized = residuals(name, without, motion, &[])?;
+        let generalized = residuals(name, without, motion, &[], &|_| true)?
+            .into_iter()
+            .map(|r| (r.coordinate, r.on_motion))
+            .collect();
         (generalized, Vec::new())
     } else {
         let multipliers: Vec<Expr> = rows.iter().map(|&k| motion.multipliers[k]).collect();
@@ -191,6 +201,7 @@ pub(super) fn constraint_reaction(
         driving: false,
         methods: vec![Method::LagrangeI],
         agreement: Agreement::Single,
+        released_equations: Vec::new(),
     })
 }
 
@@ -206,9 +217,9 @@ pub(super) fn driving_force(
         (Expr::rate(name, 1), rate),
         (Expr::rate(name, 2), rate.dt()),
     ];
-    let generalized: Vec<(String, Expr)> = residuals(name, without, motion, &driven)?
+    let generalized = residuals(name, without, motion, &driven, &|q| q == name)?
         .into_iter()
-        .filter(|(q, _)| q == name)
+        .map(|r| (r.coordinate, r.on_motion))
         .collect();
     Ok(Reaction {
         name: name.to_string(),
@@ -225,6 +236,7 @@ pub(super) fn driving_force(
         driving: true,
         methods: vec![Method::LagrangeI],
         agreement: Agreement::Single,
+        released_equations: Vec::new(),
     })
 }
 

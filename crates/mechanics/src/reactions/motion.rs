@@ -151,13 +151,20 @@ pub(super) fn at_rest(displacements: &[(String, Vector)]) -> Vec<(Expr, Expr)> {
 
 /// Residuals `E_j − Q_j + Σ_k A_kj λ_k` of the system `without` (a constraint dropped, maybe
 /// displacements added) on the motion of the constrained system, for every coordinate of
-/// `without`. Other constraints' rows are matched to the constrained system's by name, in order.
+/// `without` that `wanted` accepts. Other constraints' rows are matched to the constrained
+/// system's by name, in order.
+///
+/// Putting a residual on the motion (the accelerations substituted, the result in normal
+/// form) is most of a reaction's cost, and a release asks only for its displacements' and
+/// rotations' residuals: the released system's other coordinates are left out (the double
+/// pendulum's hinge reactions did twice the work; issue 20).
 pub(super) fn residuals(
     name: &str,
     without: &System,
     motion: &Motion,
     zero: &[(Expr, Expr)],
-) -> Result<Vec<(String, Expr)>, ReactionError> {
+    wanted: &dyn Fn(&str) -> bool,
+) -> Result<Vec<Residual>, ReactionError> {
     let released = derive_released(without).map_err(|source| ReactionError::Mechanics {
         reaction: name.to_string(),
         source,
@@ -190,12 +197,32 @@ pub(super) fn residuals(
             *term += *a * motion.multipliers[k];
         }
     }
+    let equations = released
+        .lagrange_lhs()
+        .iter()
+        .zip(released.generalized_forces());
     Ok(released
         .coordinates()
         .iter()
         .zip(terms)
-        .map(|(q, r)| (q.clone(), motion.on_motion(r.subs(zero))))
+        .zip(equations)
+        .filter(|((q, _), _)| wanted(q))
+        .map(|((q, r), (e, f))| Residual {
+            coordinate: q.clone(),
+            on_motion: motion.on_motion(r.subs(zero)),
+            at_rest: (*e - *f).subs(zero),
+        })
         .collect())
+}
+
+/// One coordinate's residual from [`residuals`].
+pub(super) struct Residual {
+    /// The released system's coordinate.
+    pub(super) coordinate: String,
+    /// `E_j − Q_j + Σ_k A_kj λ_k` on the constrained motion.
+    pub(super) on_motion: Expr,
+    /// `E_j − Q_j` with the substitution `zero` only (not in normal form).
+    pub(super) at_rest: Expr,
 }
 
 #[cfg(test)]

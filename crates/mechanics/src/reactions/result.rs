@@ -105,4 +105,9 @@ pub struct Reaction {
     pub methods: Vec<Method>,
     /// How they were compared.
     pub agreement: Agreement,
+    /// For a force at a point: the released system's equation `E_u − Q_u` of each
+    /// displacement and rotation `u` that has one, at `u = u̇ = ü = 0` and before the
+    /// constrained motion is put in (the working a solution prints before the result; kept
+    /// so that it costs no second derivation of the released system).
+    pub released_equations: Vec<(String, Expr)>,
 }
