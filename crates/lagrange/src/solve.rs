@@ -390,7 +390,7 @@ impl Analysis {
             .map(|l| l.trim_start_matches('#').trim())
             .collect();
         let paragraph = opening.join(" ");
-        let sentence = match paragraph.find(". ") {
+        let sentence = match first_sentence_end(&paragraph) {
             Some(end) => &paragraph[..end],
             None => paragraph.trim_end_matches('.'),
         };
@@ -494,5 +494,35 @@ fn pole_paragraphs(found: &crate::Equilibria, notation: &Notation, sections: &mu
                 ));
             }
         }
+    }
+}
+
+/// Where the first sentence of `paragraph` ends: the first `. ` not after an abbreviation (a
+/// capitalised word of at most four letters or a single letter, as in a citation's
+/// "Proc. R. Soc. A").
+fn first_sentence_end(paragraph: &str) -> Option<usize> {
+    paragraph.match_indices(". ").map(|(at, _)| at).find(|&at| {
+        let word = paragraph[..at].rsplit(' ').next().unwrap_or("");
+        let abbreviation = word.chars().next().is_some_and(char::is_uppercase)
+            && word.chars().count() <= 4
+            && word.chars().all(char::is_alphabetic);
+        !abbreviation
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::first_sentence_end;
+
+    #[test]
+    fn a_title_runs_past_a_citations_abbreviations() {
+        let text = "The bicycle of Meijaard et al., Proc. R. Soc. A 463 (2007), with its Table 1. Four bodies.";
+        let end = first_sentence_end(text).expect("a sentence end");
+        assert_eq!(
+            &text[..end],
+            "The bicycle of Meijaard et al., Proc. R. Soc. A 463 (2007), with its Table 1"
+        );
+        assert_eq!(first_sentence_end("A pendulum. Swinging."), Some(10));
+        assert_eq!(first_sentence_end("No end"), None);
     }
 }
