@@ -53,7 +53,13 @@ pub(crate) struct Compiled {
     pub(crate) n: usize,
     pub(crate) m: usize,
     pub(crate) holonomic: Vec<usize>,
-    pub(crate) dynamics: Evaluator,
+    /// The dense tape of `M`, `f`, `A`, `b`; `None` only where the right-hand side goes by the
+    /// tree, which never reads it: the `n²` entries of `M`, folded and compiled, were most of
+    /// the preparation of a large chain (16 s of the 3-D chain of 100 rods).
+    /// [`Compiled::dense_tape`] compiles it where a caller asks for the dense route.
+    pub(crate) dynamics: Option<Evaluator>,
+    /// What the dense tape is compiled from.
+    dense_source: DenseSource,
     /// The articulated-body route, where the model has a tree worth using.
     pub(crate) tree: Option<TreeRhs>,
     pub(crate) monitor: Evaluator,
@@ -87,15 +93,24 @@ impl Compiled {
         let (inputs, values) = input_layout(equations.coordinates(), parameters);
         let fold = Folder::new(parameters, timed_inputs);
 
-        let mut dynamic_outputs: Vec<Expr> = fold.all(&equations.mass_matrix().concat());
-        dynamic_outputs.extend(fold.all(equations.forcing()));
-        dynamic_outputs.extend(fold.all(&equations.constraint_matrix().concat()));
-        dynamic_outputs.extend(fold.all(equations.constraint_rhs()));
-        let dynamics = Evaluator::new(&dynamic_outputs, &inputs)?;
+        let mut dynamic_outputs: Vec<Expr> = equations.mass_matrix().concat();
+        dynamic_outputs.extend_from_slice(equations.forcing());
+        dynamic_outputs.extend(equations.constraint_matrix().concat());
+        dynamic_outputs.extend_from_slice(equations.constraint_rhs());
+        let dense_source = DenseSource {
+            outputs: dynamic_outputs,
+            inputs: inputs.clone(),
+            fold: fold.clone(),
+        };
         let tree = if m == 0 {
             compile_tree(system, equations, &fold, &inputs, &values)
         } else {
             None
+        };
+        let dynamics = if tree.as_ref().is_some_and(|t| t.preferred) {
+            None
+        } else {
+            Some(dense_source.compile()?)
         };
 
         let levels = constraint_levels(system, equations);
@@ -129,6 +144,7 @@ impl Compiled {
             m,
             holonomic,
             dynamics,
+            dense_source,
             tree,
             monitor,
             canonical,
@@ -138,10 +154,34 @@ impl Compiled {
             inputs: values,
             drift_known,
         };
-        if compiled.tree.is_some() && !crate::forms::tree_agrees(&mut compiled) {
-            compiled.tree = None;
+        if compiled.tree.is_some() {
+            // With the dense tape at hand the two routes are compared; without it the tree's
+            // accelerations are put into the model's own equations.
+            let agrees = if compiled.dynamics.is_some() {
+                crate::forms::tree_agrees(&mut compiled)
+            } else {
+                let forcing = fold.all(equations.forcing());
+                let kinetic = fold.one(equations.kinetic_energy());
+                crate::forms::tree_satisfies(&mut compiled, &inputs, &forcing, kinetic)
+            };
+            if !agrees {
+                compiled.tree = None;
+                compiled.dense_tape()?;
+            }
         }
         Ok(compiled)
+    }
+
+    /// The dense tape, compiled now if the right-hand side went by the tree until now.
+    ///
+    /// # Errors
+    /// [`TapeError`] when an expression of `M`, `f`, `A` or `b` cannot be compiled.
+    pub(crate) fn dense_tape(&mut self) -> Result<&mut Evaluator, TapeError> {
+        let dynamics = match self.dynamics.take() {
+            Some(dynamics) => dynamics,
+            None => self.dense_source.compile()?,
+        };
+        Ok(self.dynamics.insert(dynamics))
     }
 
     /// How many event functions there are: each output of the events tape, then each
@@ -193,6 +233,21 @@ impl Compiled {
         let position = largest(&out[1..1 + holonomic]);
         let velocity = largest(&out[1 + holonomic..]);
         (out[0], position, velocity)
+    }
+}
+
+/// The dense tape's expressions (`M` row-major, `f`, `A`, `b`, unfolded), the input layout
+/// and the run's numbers.
+#[derive(Clone, Debug)]
+struct DenseSource {
+    outputs: Vec<Expr>,
+    inputs: Vec<Symbol>,
+    fold: Folder,
+}
+
+impl DenseSource {
+    fn compile(&self) -> Result<Evaluator, TapeError> {
+        Evaluator::new(&self.fold.all(&self.outputs), &self.inputs)
     }
 }
 
@@ -292,6 +347,7 @@ fn input_layout(names: &[String], parameters: &[(String, f64)]) -> (Vec<Symbol>,
 /// cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about n-fold.
 /// Values enter as floats, never as exact integers: the normal form would expand
 /// trigonometry of small integer multiples (`cos(ω t)` with an integer ω).
+#[derive(Clone, Debug)]
 struct Folder {
     timed: Vec<(Expr, Expr)>,
     constants: Vec<(Expr, Expr)>,

@@ -14,7 +14,7 @@ use numeric::{
     TapeError,
 };
 
-use crate::compiled::Compiled;
+use crate::compiled::{Compiled, Evaluator};
 use crate::forms::{Canonical, SecondOrder};
 
 /// An integration method, by the name the user gives.
@@ -672,7 +672,11 @@ impl Simulation {
     pub fn rhs_instructions(&self) -> usize {
         match &self.compiled.tree {
             Some(tree) if tree.preferred => tree.evaluator.instruction_count(),
-            _ => self.compiled.dynamics.instruction_count(),
+            _ => self
+                .compiled
+                .dynamics
+                .as_ref()
+                .map_or(0, Evaluator::instruction_count),
         }
     }
 
@@ -689,6 +693,11 @@ impl Simulation {
     /// benchmarks that compare the routes in one process; returns whether it now goes by the
     /// tree (never where the model has none).
     pub fn set_rhs_by_tree(&mut self, by_tree: bool) -> bool {
+        // The dense route needs its tape, which the tree's route did not compile; where it
+        // cannot be compiled the tree stays.
+        if !by_tree && self.compiled.dense_tape().is_err() {
+            return self.rhs_by_tree();
+        }
         if let Some(tree) = self.compiled.tree.as_mut() {
             tree.preferred = by_tree;
         }
@@ -699,9 +708,10 @@ impl Simulation {
     /// where the model has a kinematic tree that agrees with the dense solve (whether or not
     /// the right-hand side goes by it), by the tree (`None` otherwise, or where its
     /// elimination fails at the state): the two routes side by side, for tests and
-    /// benchmarks. `None` when `state` does not hold two numbers per coordinate.
+    /// benchmarks. `None` when `state` does not hold two numbers per coordinate, or when the
+    /// dense tape (compiled here if the tree's route did without it) cannot be compiled.
     pub fn rhs_both_routes(&mut self, t: f64, state: &[f64]) -> Option<RhsRoutes> {
-        if state.len() != 2 * self.compiled.n {
+        if state.len() != 2 * self.compiled.n || self.compiled.dense_tape().is_err() {
             return None;
         }
         let mut system = SecondOrder::new(&mut self.compiled);
