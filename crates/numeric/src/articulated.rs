@@ -115,6 +115,13 @@ struct Given<'a> {
     forces: &'a [f64],
 }
 
+/// The first `D` numbers of `xs` (one bounds check, where indexing each would take `D`).
+fn load<const D: usize>(xs: &[f64]) -> [f64; D] {
+    let mut out = [0.0; D];
+    out.copy_from_slice(&xs[..D]);
+    out
+}
+
 /// Calls `$self.$fixed::<D>(args)` for a node of `D ≤ 9` components, else
 /// `$self.$general(args)`: the dispatch is one jump per node.
 macro_rules! by_dimension {
@@ -291,8 +298,8 @@ impl Articulated {
         given: &Given,
     ) -> Result<(), LinearError> {
         let (o, b) = (self.offset[j], self.block[j]);
-        let s: [f64; D] = std::array::from_fn(|r| given.motion[o + r]);
-        let c: [f64; D] = std::array::from_fn(|r| given.bias_acceleration[o + r]);
+        let s: [f64; D] = load(&given.motion[o..]);
+        let c: [f64; D] = load(&given.bias_acceleration[o..]);
         let mut inertia = [[0.0; D]; D];
         {
             let own = &mut self.articulated[b..b + D * D];
@@ -304,8 +311,11 @@ impl Articulated {
             }
             own.fill(0.0);
         }
+        let mut bias: [f64; D] = load(&given.bias_force[o..]);
         let carried = &mut self.bias[o..o + D];
-        let bias: [f64; D] = std::array::from_fn(|r| given.bias_force[o + r] + carried[r]);
+        for (x, y) in bias.iter_mut().zip(carried.iter()) {
+            *x += y;
+        }
         carried.fill(0.0);
         let (mut u, mut ic) = ([0.0; D], [0.0; D]);
         for (r, row) in inertia.iter().enumerate() {
@@ -341,8 +351,10 @@ impl Articulated {
         let (po, pb) = (self.offset[p], self.block[p]);
         if self.identity[j] {
             let target = &mut self.articulated[pb..pb + D * D];
+            for (x, y) in self.bias[po..po + D].iter_mut().zip(&out) {
+                *x += y;
+            }
             for (r, row) in inertia.iter().enumerate() {
-                self.bias[po + r] += out[r];
                 for (k, x) in row.iter().enumerate() {
                     target[r * D + k] += x;
                 }
@@ -446,15 +458,18 @@ impl Articulated {
             }
         }
         let mut reduced = self.reduced[j];
-        for (u, g) in self.projected[o..o + D].iter().zip(&gathered) {
+        let projected: [f64; D] = load(&self.projected[o..]);
+        for (u, g) in projected.iter().zip(&gathered) {
             reduced -= u * g;
         }
         let x = reduced / self.pivot[j];
-        let s = &given.motion[o..o + D];
-        let c = &given.bias_acceleration[o..o + D];
-        for (r, a) in self.acceleration[o..o + D].iter_mut().enumerate() {
+        let s: [f64; D] = load(&given.motion[o..]);
+        let c: [f64; D] = load(&given.bias_acceleration[o..]);
+        let mut acceleration = [0.0; D];
+        for (r, a) in acceleration.iter_mut().enumerate() {
             *a = gathered[r] + s[r] * x + c[r];
         }
+        self.acceleration[o..o + D].copy_from_slice(&acceleration);
         x
     }
 
