@@ -490,9 +490,12 @@ impl Articulated {
             reduced -= u * g;
         }
         let x = reduced / self.pivot[j];
-        for r in 0..d {
-            self.acceleration[o + r] =
-                gathered[r] + given.motion[o + r] * x + given.bias_acceleration[o + r];
+        let own = self.acceleration[o..o + d]
+            .iter_mut()
+            .zip(&given.motion[o..o + d])
+            .zip(&given.bias_acceleration[o..o + d]);
+        for (((a, s), c), g) in own.zip(&*gathered) {
+            *a = g + s * x + c;
         }
         x
     }
