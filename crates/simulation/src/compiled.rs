@@ -53,7 +53,13 @@ pub(crate) struct Compiled {
     pub(crate) n: usize,
     pub(crate) m: usize,
     pub(crate) holonomic: Vec<usize>,
-    pub(crate) dynamics: Evaluator,
+    /// The dense tape of `M`, `f`, `A`, `b`; `None` only where the right-hand side goes by the
+    /// tree, which never reads it: the `n²` entries of `M`, folded and compiled, were most of
+    /// the preparation of a large chain (16 s of the 3-D chain of 100 rods).
+    /// [`Compiled::dense_tape`] compiles it where a caller asks for the dense route.
+    pub(crate) dynamics: Option<Evaluator>,
+    /// What the dense tape is compiled from.
+    dense_source: DenseSource,
     /// The articulated-body route, where the model has a tree worth using.
     pub(crate) tree: Option<TreeRhs>,
     pub(crate) monitor: Evaluator,
@@ -87,15 +93,31 @@ impl Compiled {
         let (inputs, values) = input_layout(equations.coordinates(), parameters);
         let fold = Folder::new(parameters, timed_inputs);
 
-        let mut dynamic_outputs: Vec<Expr> = fold.all(&equations.mass_matrix().concat());
-        dynamic_outputs.extend(fold.all(equations.forcing()));
-        dynamic_outputs.extend(fold.all(&equations.constraint_matrix().concat()));
-        dynamic_outputs.extend(fold.all(equations.constraint_rhs()));
-        let dynamics = Evaluator::new(&dynamic_outputs, &inputs)?;
+        let mut dynamic_outputs: Vec<Expr> = equations.mass_matrix().concat();
+        dynamic_outputs.extend_from_slice(equations.forcing());
+        dynamic_outputs.extend(equations.constraint_matrix().concat());
+        dynamic_outputs.extend_from_slice(equations.constraint_rhs());
+        let dense_source = DenseSource {
+            outputs: dynamic_outputs,
+            inputs: inputs.clone(),
+            fold: fold.clone(),
+        };
         let tree = if m == 0 {
             compile_tree(system, equations, &fold, &inputs, &values)
         } else {
             None
+        };
+        // The dense tape is compiled only where the tree's cost does not beat the dense
+        // route's without it; then the two are compared with the dense tape's own count.
+        let mut tree = tree;
+        let dynamics = if tree.as_ref().is_some_and(|t| t.preferred) {
+            None
+        } else {
+            let dynamics = dense_source.compile()?;
+            if let Some(tree) = tree.as_mut() {
+                tree.preferred = tree.cost < dense_cost(dynamics.instruction_count(), n);
+            }
+            Some(dynamics)
         };
 
         let levels = constraint_levels(system, equations);
@@ -129,6 +151,7 @@ impl Compiled {
             m,
             holonomic,
             dynamics,
+            dense_source,
             tree,
             monitor,
             canonical,
@@ -138,10 +161,34 @@ impl Compiled {
             inputs: values,
             drift_known,
         };
-        if compiled.tree.is_some() && !crate::forms::tree_agrees(&mut compiled) {
-            compiled.tree = None;
+        if compiled.tree.is_some() {
+            // With the dense tape at hand the two routes are compared; without it the tree's
+            // accelerations are put into the model's own equations.
+            let agrees = if compiled.dynamics.is_some() {
+                crate::forms::tree_agrees(&mut compiled)
+            } else {
+                let forcing = fold.all(equations.forcing());
+                let kinetic = fold.one(equations.kinetic_energy());
+                crate::forms::tree_satisfies(&mut compiled, &inputs, &forcing, kinetic)
+            };
+            if !agrees {
+                compiled.tree = None;
+                compiled.dense_tape()?;
+            }
         }
         Ok(compiled)
+    }
+
+    /// The dense tape, compiled now if the right-hand side went by the tree until now.
+    ///
+    /// # Errors
+    /// [`TapeError`] when an expression of `M`, `f`, `A` or `b` cannot be compiled.
+    pub(crate) fn dense_tape(&mut self) -> Result<&mut Evaluator, TapeError> {
+        let dynamics = match self.dynamics.take() {
+            Some(dynamics) => dynamics,
+            None => self.dense_source.compile()?,
+        };
+        Ok(self.dynamics.insert(dynamics))
     }
 
     /// How many event functions there are: each output of the events tape, then each
@@ -196,6 +243,21 @@ impl Compiled {
     }
 }
 
+/// The dense tape's expressions (`M` row-major, `f`, `A`, `b`, unfolded), the input layout
+/// and the run's numbers.
+#[derive(Clone, Debug)]
+struct DenseSource {
+    outputs: Vec<Expr>,
+    inputs: Vec<Symbol>,
+    fold: Folder,
+}
+
+impl DenseSource {
+    fn compile(&self) -> Result<Evaluator, TapeError> {
+        Evaluator::new(&self.fold.all(&self.outputs), &self.inputs)
+    }
+}
+
 /// The articulated-body route of a model without constraints: a tape of `[S, c, b, τ]` and
 /// the tree's solver (with `W` in place). Invariant: the tape's outputs are `3 width + n`.
 #[derive(Clone, Debug)]
@@ -203,11 +265,34 @@ pub(crate) struct TreeRhs {
     pub(crate) evaluator: Evaluator,
     pub(crate) solver: Articulated,
     pub(crate) width: usize,
-    /// Whether the right-hand side goes by the tree: eliminating on it costs less than the
-    /// dense solve, `10 n + Σ d_j²` against `n³/6` for `L D Lᵀ` and `n²` entries of `M` on
-    /// the tape (see `compile_tree`). A tree kept but not preferred still serves
-    /// [`crate::Simulation::rhs_both_routes`].
+    /// Machine instructions of one evaluation by the tree, estimated ([`tree_cost`]).
+    pub(crate) cost: usize,
+    /// Whether the right-hand side goes by the tree: it costs less than the dense route
+    /// ([`dense_cost`]; with the dense tape's count where that tape was compiled, without
+    /// it — a lower bound — where the tree wins even so). A tree kept but not preferred still
+    /// serves [`crate::Simulation::rhs_both_routes`].
     pub(crate) preferred: bool,
+}
+
+/// Machine instructions of one right-hand side by the tree: 18 a tape instruction, about 290
+/// a node and 29 per entry of its `d_j × d_j` block, and 350 per call. Fitted to callgrind's
+/// counts per evaluation (`bench/compare/callgrind.sh`, docs/performance.md, issue 20) on
+/// the n-link pendulums (n = 2…10, d = 2: within 25 %) and the 3-D chains (1 to 10 rods,
+/// d = 9: the marginal cost of a rod within 2 %, the first rod overestimated).
+fn tree_cost(tape_instructions: usize, dimensions: impl Iterator<Item = usize>) -> usize {
+    350 + 18 * tape_instructions + dimensions.map(|d| 290 + 29 * d * d).sum::<usize>()
+}
+
+/// Machine instructions of one right-hand side by the dense route with a tape of
+/// `tape_instructions` (0 for a lower bound): 18 a tape instruction, the `L D Lᵀ` solve and
+/// the copies `300 + 250 n + 22 (n³/6 + n²)`, fitted as [`tree_cost`] (n = 2…20, within
+/// 15 % but for the 3-D chain of 5 rods, 25 %).
+fn dense_cost(tape_instructions: usize, n: usize) -> usize {
+    let cubic = n.saturating_pow(3) / 6 + n.saturating_mul(n);
+    300usize
+        .saturating_add(18usize.saturating_mul(tape_instructions))
+        .saturating_add(250usize.saturating_mul(n))
+        .saturating_add(22usize.saturating_mul(cubic))
 }
 
 /// The tree route, where the model has a kinematic tree; `None` where it has none or a number
@@ -221,11 +306,6 @@ fn compile_tree(
 ) -> Option<TreeRhs> {
     let tree = KinematicTree::of(system, equations)?;
     let n = equations.coordinates().len();
-    // Callgrind's counts per evaluation (docs/performance.md, issue 20) put the tree at about
-    // 400 instructions a node plus 40 per `d_j²`, the dense route at 40 per unit of
-    // `n³/6 + n²`: the tree wins from n ≈ 7 on the n-link pendulum (d = 2) and from about
-    // 20 coordinates on the 3-D chain (d = 9).
-    let preferred = 10 * n + tree.cost() < n * n * n / 6 + n * n;
     let width = tree.motion().len();
     let mut outputs = fold.all(tree.motion());
     outputs.extend(fold.all(tree.bias_acceleration()));
@@ -258,11 +338,16 @@ fn compile_tree(
         })
         .collect();
     let solver = Articulated::new(&nodes).ok()?;
+    let cost = tree_cost(
+        evaluator.instruction_count(),
+        tree.nodes().iter().map(|node| node.source.len()),
+    );
     Some(TreeRhs {
         evaluator,
         solver,
         width,
-        preferred,
+        cost,
+        preferred: cost < dense_cost(0, n),
     })
 }
 
@@ -295,6 +380,7 @@ pub(crate) fn input_layout(
 /// cos θ_i cos θ_j …) then merge, which shrinks the n-link pendulum's forcing about n-fold.
 /// Values enter as floats, never as exact integers: the normal form would expand
 /// trigonometry of small integer multiples (`cos(ω t)` with an integer ω).
+#[derive(Clone, Debug)]
 pub(crate) struct Folder {
     timed: Vec<(Expr, Expr)>,
     constants: Vec<(Expr, Expr)>,

@@ -155,7 +155,12 @@ impl<'c> SecondOrder<'c> {
 
     fn constraint_rows(&mut self) -> Vec<f64> {
         let (n, m) = (self.compiled.n, self.compiled.m);
-        let out = self.compiled.dynamics.eval(&self.compiled.inputs);
+        let c = &mut *self.compiled;
+        // A model with constraints has no tree, so its dense tape is always compiled.
+        let Some(dynamics) = c.dynamics.as_mut() else {
+            return vec![0.0; m * n];
+        };
+        let out = dynamics.eval(&c.inputs);
         out[n * n + n..n * n + n + m * n].to_vec()
     }
 
@@ -164,7 +169,12 @@ impl<'c> SecondOrder<'c> {
     fn dense(&mut self) -> Result<(), RhsError> {
         let (n, m) = (self.compiled.n, self.compiled.m);
         let c = &mut *self.compiled;
-        let out = c.dynamics.eval(&c.inputs);
+        // The dense tape is missing only where the right-hand side goes by the tree, which
+        // comes here only to name a singular pivot; the caller then reports the tree's.
+        let Some(dynamics) = c.dynamics.as_mut() else {
+            return Err(RhsError::NotFinite);
+        };
+        let out = dynamics.eval(&c.inputs);
         let (mass, rest) = out.split_at(n * n);
         let (forcing, rest) = rest.split_at(n);
         let (a, b) = rest.split_at(m * n);
@@ -253,6 +263,15 @@ impl<'c> SecondOrder<'c> {
     }
 }
 
+/// The `k`-th of the states at which the routes are checked, spread over the configuration
+/// space, and its time.
+fn sample_state(n: usize, k: u32) -> (Vec<f64>, f64) {
+    let y = (0..2 * n)
+        .map(|i| (1.7 * f64::from(k + 1) + 0.9 * i as f64).sin() * if i < n { 2.0 } else { 1.0 })
+        .collect();
+    (y, 0.25 * f64::from(k))
+}
+
 /// Whether the tree's `q̈` agrees with the dense solve's at three states spread over the
 /// configuration space (to 1e-8 of the largest), where both can be solved; at least two must
 /// be. The check is numeric so that it holds whatever route derived `M` and `f`; an
@@ -265,12 +284,8 @@ pub(crate) fn tree_agrees(compiled: &mut Compiled) -> bool {
     let mut compared = 0;
     let mut agree = true;
     for k in 0..3u32 {
-        let y: Vec<f64> = (0..2 * n)
-            .map(|i| {
-                (1.7 * f64::from(k + 1) + 0.9 * i as f64).sin() * if i < n { 2.0 } else { 1.0 }
-            })
-            .collect();
-        if let (Ok(dense), Some(tree)) = system.both_routes(0.25 * f64::from(k), &y) {
+        let (y, t) = sample_state(n, k);
+        if let (Ok(dense), Some(tree)) = system.both_routes(t, &y) {
             let scale = dense.iter().fold(1.0f64, |s, x| s.max(x.abs()));
             let error = dense
                 .iter()
@@ -279,6 +294,74 @@ pub(crate) fn tree_agrees(compiled: &mut Compiled) -> bool {
             compared += 1;
             agree &= error <= 1e-8 * scale;
         }
+    }
+    system.compiled.inputs[..=2 * n].copy_from_slice(&saved);
+    agree && compared >= 2
+}
+
+/// Whether the tree's `q̈` satisfies the model's own equations `M q̈ = f`, where the dense tape
+/// was not compiled: at the states of [`tree_agrees`] (at least two solved), along two
+/// directions `w` each, `wᵀ M q̈ = (T(q, w + q̈) − T(q, w − q̈)) / 2` from the kinetic energy's
+/// expression (`T = ½ q̇ᵀ M q̇`) against `wᵀ f` from the forcing's, to 1e-8 of the terms' size.
+/// `forcing` and `kinetic` take the input layout's symbols (`inputs`). Evaluating `n`
+/// expressions and `T` costs a small part of compiling the `n²` entries of `M`, and a wrong
+/// `q̈` passes only if its residual is orthogonal to every direction, a coincidence of
+/// measure zero.
+pub(crate) fn tree_satisfies(
+    compiled: &mut Compiled,
+    inputs: &[cas::Symbol],
+    forcing: &[cas::Expr],
+    kinetic: cas::Expr,
+) -> bool {
+    let n = compiled.n;
+    let saved = compiled.inputs[..=2 * n].to_vec();
+    let mut system = SecondOrder::new(compiled);
+    let mut compared = 0;
+    let mut agree = true;
+    for k in 0..3u32 {
+        let (y, t) = sample_state(n, k);
+        system.compiled.set_state(&y[..n], &y[n..], t);
+        if !matches!(system.articulated(), Some(Ok(()))) {
+            continue;
+        }
+        let accelerations = &system.vector[..n];
+        let mut values: std::collections::HashMap<cas::Symbol, f64> = inputs
+            .iter()
+            .copied()
+            .zip(system.compiled.inputs.iter().copied())
+            .collect();
+        let forces: Option<Vec<f64>> = forcing
+            .iter()
+            .map(|e| e.eval(&|s| values.get(&s).copied()).ok())
+            .collect();
+        let Some(forces) = forces else {
+            agree = false;
+            break;
+        };
+        for direction in 0..2u32 {
+            let w: Vec<f64> = (0..n)
+                .map(|i| (2.3 * f64::from(2 * k + direction + 1) + 1.1 * i as f64).cos())
+                .collect();
+            let mut energy = |sign: f64| {
+                for (i, rate) in inputs[n..2 * n].iter().enumerate() {
+                    values.insert(*rate, w[i] + sign * accelerations[i]);
+                }
+                kinetic.eval(&|s| values.get(&s).copied()).ok()
+            };
+            let (Some(plus), Some(minus)) = (energy(1.0), energy(-1.0)) else {
+                agree = false;
+                break;
+            };
+            let work: f64 = w.iter().zip(&forces).map(|(a, b)| a * b).sum();
+            let size = plus.abs()
+                + minus.abs()
+                + w.iter()
+                    .zip(&forces)
+                    .map(|(a, b)| (a * b).abs())
+                    .sum::<f64>();
+            agree &= ((plus - minus) / 2.0 - work).abs() <= 1e-8 * size;
+        }
+        compared += 1;
     }
     system.compiled.inputs[..=2 * n].copy_from_slice(&saved);
     agree && compared >= 2
@@ -296,8 +379,12 @@ impl OdeSystem for SecondOrder<'_> {
         // A pivot the tree cannot take (a singular or non-finite state) goes to the dense
         // solve, which names the singular column as it always has.
         let by_tree = self.compiled.tree.as_ref().is_some_and(|t| t.preferred);
-        if !(by_tree && matches!(self.articulated(), Some(Ok(())))) {
-            self.dense()?;
+        match by_tree.then(|| self.articulated()).flatten() {
+            Some(Ok(())) => {}
+            // Without the dense tape (the tree's route did not compile it) the tree's pivot
+            // names the column.
+            Some(Err(error)) if self.compiled.dynamics.is_none() => return Err(singular(error)),
+            _ => self.dense()?,
         }
         dy[..n].copy_from_slice(&y[n..]);
         dy[n..].copy_from_slice(&self.vector[..n]);

@@ -15,7 +15,7 @@ use numeric::{
     TapeError,
 };
 
-use crate::compiled::Compiled;
+use crate::compiled::{Compiled, Evaluator};
 use crate::forms::{Canonical, SecondOrder};
 use crate::kane::{KaneOde, KaneRoute, KaneRows};
 
@@ -792,7 +792,7 @@ impl Simulation {
         match &self.route {
             Route::Lagrange(c) => match &c.tree {
                 Some(tree) if tree.preferred => tree.evaluator.instruction_count(),
-                _ => c.dynamics.instruction_count(),
+                _ => c.dynamics.as_ref().map_or(0, Evaluator::instruction_count),
             },
             Route::Kane(k) => k.motion.system().size(),
         }
@@ -815,7 +815,10 @@ impl Simulation {
     /// tree (never where the model has none).
     pub fn set_rhs_by_tree(&mut self, by_tree: bool) -> bool {
         if let Route::Lagrange(c) = &mut self.route {
-            if let Some(tree) = c.tree.as_mut() {
+            // The dense route needs its tape, which the tree's route did not compile; where it
+            // cannot be compiled the tree stays.
+            let tree_stays = !by_tree && c.dense_tape().is_err();
+            if let (false, Some(tree)) = (tree_stays, c.tree.as_mut()) {
                 tree.preferred = by_tree;
             }
         }
@@ -826,12 +829,13 @@ impl Simulation {
     /// where the model has a kinematic tree that agrees with the dense solve (whether or not
     /// the right-hand side goes by it), by the tree (`None` otherwise, or where its
     /// elimination fails at the state): the two routes side by side, for tests and
-    /// benchmarks. `None` when `state` does not hold two numbers per coordinate.
+    /// benchmarks. `None` when `state` does not hold two numbers per coordinate, or when the
+    /// dense tape (compiled here if the tree's route did without it) cannot be compiled.
     pub fn rhs_both_routes(&mut self, t: f64, state: &[f64]) -> Option<RhsRoutes> {
         let Route::Lagrange(compiled) = &mut self.route else {
             return None;
         };
-        if state.len() != 2 * compiled.n {
+        if state.len() != 2 * compiled.n || compiled.dense_tape().is_err() {
             return None;
         }
         let mut system = SecondOrder::new(compiled);
