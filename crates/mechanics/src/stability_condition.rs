@@ -434,7 +434,27 @@ pub fn isotropic_condition(
     let gyroscopic = vec![vec![zero, gamma], vec![-gamma, zero]];
     let stiffness = vec![vec![k, zero], vec![zero, k]];
     let tests = gyroscopic_conditions(&mass, &gyroscopic, &stiffness).unwrap_or_default();
-    let verdict = match read_all(&tests, positive) {
+    let (verdict, boundaries) = verdict_of(&tests, positive);
+    StabilityCondition {
+        coordinates: vec!["u".to_owned(), "v".to_owned()],
+        mass,
+        gyroscopic,
+        stiffness,
+        criterion: ConditionCriterion::Gyroscopic,
+        tests,
+        verdict,
+        boundaries,
+        characteristic: Vec::new(),
+    }
+}
+
+/// The verdict of the tests (each `> 0`) read with the parameters' signs, and its
+/// boundaries (none of them a family of equilibria).
+pub(crate) fn verdict_of(
+    tests: &[Expr],
+    positive: &dyn Fn(Symbol) -> bool,
+) -> (Verdict, Vec<Boundary>) {
+    let verdict = match read_all(tests, positive) {
         None => Verdict::Never,
         Some(v) if v.is_empty() => Verdict::Always,
         Some(v) => Verdict::When(v),
@@ -449,17 +469,7 @@ pub fn isotropic_condition(
             .collect(),
         _ => Vec::new(),
     };
-    StabilityCondition {
-        coordinates: vec!["u".to_owned(), "v".to_owned()],
-        mass,
-        gyroscopic,
-        stiffness,
-        criterion: ConditionCriterion::Gyroscopic,
-        tests,
-        verdict,
-        boundaries,
-        characteristic: Vec::new(),
-    }
+    (verdict, boundaries)
 }
 
 #[cfg(test)]

@@ -106,25 +106,7 @@ fn system_section(system: &System, equations: &Equations, notation: &Notation) -
             equations.constraint_names().join(", ")
         ));
     }
-    let rows: Vec<Vec<Cell>> = system
-        .parameters()
-        .iter()
-        .map(|(name, value)| {
-            vec![
-                Cell::Math(Math::expr(Expr::symbol(name))),
-                match value {
-                    Some(v) => Cell::Math(notation.math(*v)),
-                    None => Cell::Text("symbolic".into()),
-                },
-            ]
-        })
-        .collect();
-    if !rows.is_empty() {
-        s.blocks.push(Block::Table {
-            header: vec!["parameter".into(), "value".into()],
-            rows,
-        });
-    }
+    s.blocks.extend(parameter_table(system, notation));
     if !system.constants().is_empty() {
         s.paragraph("Named constants, written by name wherever their value appears below:");
         s.blocks.push(Block::Table {
@@ -469,6 +451,26 @@ fn first_integrals_section(equations: &Equations, notation: &Notation) -> Sectio
         }
     }
     s
+}
+
+/// The parameters and their values (`symbolic` where the model gives none), as a table;
+/// none without parameters.
+pub(crate) fn parameter_table(system: &System, notation: &Notation) -> Option<Block> {
+    let rows: Vec<Vec<Cell>> = (system.parameters().iter())
+        .map(|(name, value)| {
+            vec![
+                Cell::Math(Math::expr(Expr::symbol(name))),
+                match value {
+                    Some(v) => Cell::Math(notation.math(*v)),
+                    None => Cell::Text("symbolic".into()),
+                },
+            ]
+        })
+        .collect();
+    (!rows.is_empty()).then(|| Block::Table {
+        header: vec!["parameter".into(), "value".into()],
+        rows,
+    })
 }
 
 #[cfg(test)]

@@ -259,23 +259,8 @@ pub fn system_section(
         "Coordinates: {}. Degrees of freedom: {degrees_of_freedom}.",
         coordinates.join(", ")
     ));
-    let rows: Vec<Vec<Cell>> = (system.parameters().iter())
-        .map(|(name, value)| {
-            vec![
-                Cell::Math(Math::expr(Expr::symbol(name))),
-                match value {
-                    Some(v) => Cell::Math(notation.math(*v)),
-                    None => Cell::Text("symbolic".into()),
-                },
-            ]
-        })
-        .collect();
-    if !rows.is_empty() {
-        s.blocks.push(Block::Table {
-            header: vec!["parameter".into(), "value".into()],
-            rows,
-        });
-    }
+    s.blocks
+        .extend(crate::solution::parameter_table(system, notation));
     if !constraints.is_empty() {
         s.paragraph("Constraints:");
         s.blocks.push(Block::List(constraints.to_vec()));

@@ -105,6 +105,20 @@ pub struct Settings {
 }
 
 impl Settings {
+    /// The integrator's share of the settings.
+    fn integrator_options(&self) -> IntegratorOptions {
+        IntegratorOptions {
+            rtol: self.rtol,
+            atol: self.atol,
+            step: self.step,
+            output_step: self.output_step,
+            max_steps: self.max_steps,
+            max_outputs: self.max_rows,
+        }
+    }
+}
+
+impl Settings {
     /// From 0 to `t_end`, `rtol` 1e-8, `atol` 1e-10, with the method for that tolerance
     /// ([`MethodName::for_tolerance`]: dop853), a row every accepted step, at most 10⁶ steps
     /// and 10⁶ rows.
@@ -579,14 +593,7 @@ impl Simulation {
             method: settings.method,
             t_start,
             t_end: settings.t_end,
-            options: IntegratorOptions {
-                rtol: settings.rtol,
-                atol: settings.atol,
-                step: settings.step,
-                output_step: settings.output_step,
-                max_steps: settings.max_steps,
-                max_outputs: settings.max_rows,
-            },
+            options: settings.integrator_options(),
             initial,
             correction,
             initial_energy,
@@ -663,14 +670,7 @@ impl Simulation {
             method: settings.method,
             t_start,
             t_end: settings.t_end,
-            options: IntegratorOptions {
-                rtol: settings.rtol,
-                atol: settings.atol,
-                step: settings.step,
-                output_step: settings.output_step,
-                max_steps: settings.max_steps,
-                max_outputs: settings.max_rows,
-            },
+            options: settings.integrator_options(),
             initial,
             correction,
             initial_energy,

@@ -27,8 +27,7 @@ use super::dynamics::KaneSystem;
 use super::steady::SteadyLinearization;
 use super::verdict::SteadySpectrum;
 use super::KaneError;
-use crate::parameter_signs::read_all;
-use crate::stability_condition::{Boundary, ConditionCriterion, StabilityCondition, Verdict};
+use crate::stability_condition::{verdict_of, ConditionCriterion, StabilityCondition};
 
 /// The largest state (shape coordinates and speeds) whose characteristic polynomial is
 /// formed symbolically.
@@ -158,21 +157,7 @@ fn condition_of(
     positive: &dyn Fn(Symbol) -> bool,
 ) -> Option<StabilityCondition> {
     let (criterion, tests) = criterion_tests(rest)?;
-    let verdict = match read_all(&tests, positive) {
-        None => Verdict::Never,
-        Some(v) if v.is_empty() => Verdict::Always,
-        Some(v) => Verdict::When(v),
-    };
-    let boundaries = match &verdict {
-        Verdict::When(all) => all
-            .iter()
-            .map(|relation| Boundary {
-                relation: *relation,
-                family: false,
-            })
-            .collect(),
-        _ => Vec::new(),
-    };
+    let (verdict, boundaries) = verdict_of(&tests, positive);
     Some(StabilityCondition {
         coordinates: lin.shape.clone(),
         mass,
