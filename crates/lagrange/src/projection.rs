@@ -75,7 +75,7 @@ impl Analysis {
     }
 
     /// The parameters whose values are positive: a length `√(ℓ²)` is `ℓ` when they are.
-    fn positive_parameters(&self) -> Vec<String> {
+    pub(crate) fn positive_parameters(&self) -> Vec<String> {
         let Ok(values) = self.values() else {
             return Vec::new();
         };

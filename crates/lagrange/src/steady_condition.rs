@@ -26,7 +26,7 @@ impl Analysis {
     ) -> Result<Option<StabilityCondition>, Error> {
         let (system, values) = self.kane_system()?;
         let motion = self.exact_steady_motion(lin);
-        let positive_names = self.positive_parameter_names();
+        let positive_names = self.positive_parameters();
         let positive = |s: Symbol| positive_names.iter().any(|n| n == s.name());
         // Past the size or work limits there is no condition to state; the numeric verdict
         // is the answer then.
@@ -118,19 +118,6 @@ impl Analysis {
             section.paragraph(format!("{}.", condition_lines(&c).join("; ")));
         }
         section
-    }
-
-    /// The parameters whose values are positive.
-    fn positive_parameter_names(&self) -> Vec<String> {
-        let Ok(values) = self.values() else {
-            return Vec::new();
-        };
-        self.system()
-            .parameters()
-            .iter()
-            .filter(|(name, _)| values.iter().any(|(n, v)| n == name && *v > 0.0))
-            .map(|(name, _)| name.clone())
-            .collect()
     }
 }
 
